@@ -1,0 +1,215 @@
+"""Predicates, classifiers and the abstract state of a low-level state (Definitions 1 and 5).
+
+A *classifier* decides whether one ground atom holds in an observation. It is an ordinary
+callable ``classifier(obs, *objects) -> bool`` (the source paper's c_ψ(o1, …, om, s)). When a
+predicate has many groundings (a grid of cells), wrap a function that answers all of them at once
+in :class:`Vectorized`: it receives the observation and the list of object tuples and returns a
+boolean array whose last axis runs over the groundings. Observations may carry leading batch
+axes; per-atom classifiers written with ``obs[..., i]`` handle them unchanged.
+
+Static predicates (those no action changes, e.g. ``neighbors``) are never classified: their
+truth is the problem's ``:init``.
+
+Example:
+    >>> import numpy as np
+    >>> from planshape.planning.model import PddlTask, PredicateSignature
+    >>> task = PddlTask(
+    ...     domain_name="d", problem_name="p",
+    ...     predicates={"near": PredicateSignature("near", ("place",)),
+    ...                 "linked": PredicateSignature("linked", ("place", "place"))},
+    ...     types={"object": None, "place": "object"},
+    ...     objects={"a": "place", "b": "place"},
+    ...     init=frozenset({("linked", "a", "b")}), goal=frozenset({("near", "b")}),
+    ...     static_predicates=frozenset({"linked"}))
+    >>> centres = {"a": 0.0, "b": 1.0}
+    >>> def near(obs, place):
+    ...     return abs(obs[..., 0] - centres[place]) < 0.25
+    >>> abstraction = Abstraction(task, {"near": near})
+    >>> sorted(abstraction.abstract_state(np.array([0.9])))
+    [('linked', 'a', 'b'), ('near', 'b')]
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from planshape.errors import ClassifierError, RegistrationError, UnknownIdError
+from planshape.planning.model import AbstractState, Atom, PddlTask, format_atom
+
+Classifier = Callable[..., Any]
+
+
+@dataclass(frozen=True)
+class Vectorized:
+    """Marks a classifier that answers every requested grounding of its predicate in one call.
+
+    ``fn(obs, groundings)`` gets the observation (with any leading batch axes) and a list of
+    object tuples, and returns a boolean array of shape ``obs.shape[:-1] + (len(groundings),)``.
+
+    Example:
+        >>> import numpy as np
+        >>> centres = {"a": 0.0, "b": 1.0}
+        >>> def near_all(obs, groundings):
+        ...     c = np.array([centres[g[0]] for g in groundings])
+        ...     return np.abs(obs[..., :1] - c) < 0.25
+        >>> Vectorized(near_all).fn(np.array([0.1]), [("a",), ("b",)]).tolist()
+        [True, False]
+    """
+
+    fn: Callable[[np.ndarray, Sequence[tuple[str, ...]]], np.ndarray]
+
+
+def check_classifiers(task: PddlTask, classifiers: Mapping[str, Classifier]) -> None:
+    """Fail fast, naming the predicates, when classifiers do not cover the domain exactly.
+
+    Every fluent predicate needs a classifier; a classifier must name a predicate the domain
+    declares, and static predicates take their truth from ``:init`` instead.
+    """
+    where = f"domain {task.domain_name!r}" + (f" ({task.domain_file})" if task.domain_file else "")
+    unknown = sorted(set(classifiers) - set(task.predicates))
+    if unknown:
+        raise UnknownIdError(
+            "predicate",
+            unknown[0],
+            task.predicates,
+            hint=f"classifiers name predicates that {where} does not declare: {unknown}",
+        )
+    static = sorted(set(classifiers) & task.static_predicates)
+    if static:
+        raise RegistrationError(
+            f"classifiers given for static predicates {static} of {where}: no action changes "
+            "them, so their truth comes from the problem's :init. Remove these classifiers."
+        )
+    missing = sorted(task.fluent_predicates - set(classifiers))
+    if missing:
+        raise RegistrationError(
+            f"fluent predicates {missing} of {where} have no classifier; add one per predicate "
+            "(a callable classifier(obs, *objects) -> bool)."
+        )
+
+
+class AtomEvaluator:
+    """Evaluates a fixed, ordered list of fluent atoms on an observation, as a boolean array.
+
+    Atoms are grouped by predicate so that a :class:`Vectorized` classifier is called once per
+    predicate per observation.
+    """
+
+    def __init__(self, atoms: Sequence[Atom], classifiers: Mapping[str, Classifier]):
+        self.atoms: tuple[Atom, ...] = tuple(atoms)
+        groups: dict[str, list[int]] = {}
+        for index, atom in enumerate(self.atoms):
+            groups.setdefault(atom[0], []).append(index)
+        self._groups = [
+            (
+                predicate,
+                classifiers[predicate],
+                np.asarray(indices, dtype=np.intp),
+                [self.atoms[i][1:] for i in indices],
+            )
+            for predicate, indices in groups.items()
+        ]
+
+    def __call__(self, obs: Any) -> np.ndarray:
+        """Truth of every atom: shape ``batch_shape + (len(atoms),)``."""
+        obs = np.asarray(obs)
+        out = np.zeros((*obs.shape[:-1], len(self.atoms)), dtype=bool)
+        for predicate, classifier, indices, groundings in self._groups:
+            out[..., indices] = _classify(predicate, classifier, obs, groundings)
+        return out
+
+
+def _classify(
+    predicate: str, classifier: Classifier, obs: np.ndarray, groundings: list[tuple[str, ...]]
+) -> np.ndarray:
+    if isinstance(classifier, Vectorized):
+        try:
+            values = classifier.fn(obs, groundings)
+        except Exception as exc:
+            raise ClassifierError(
+                f"classifier of predicate {predicate!r} raised {type(exc).__name__}: {exc} "
+                f"(objects {groundings[:3]}{'…' if len(groundings) > 3 else ''})"
+            ) from exc
+        values = np.asarray(values)
+        expected = (*obs.shape[:-1], len(groundings))
+        if values.shape != expected:
+            raise ClassifierError(
+                f"vectorized classifier of predicate {predicate!r} returned shape {values.shape}, "
+                f"expected {expected} (batch shape + number of groundings)"
+            )
+        return _as_truth(predicate, values, groundings[0] if groundings else ())
+    columns = []
+    for objects in groundings:
+        try:
+            value = classifier(obs, *objects)
+        except Exception as exc:
+            raise ClassifierError(
+                f"classifier of predicate {predicate!r} raised {type(exc).__name__} on objects "
+                f"{format_atom((predicate, *objects))}: {exc}"
+            ) from exc
+        columns.append(_as_truth(predicate, np.asarray(value), objects))
+    return np.stack(columns, axis=-1) if columns else np.zeros((*obs.shape[:-1], 0), bool)
+
+
+def _as_truth(predicate: str, values: np.ndarray, objects: tuple[str, ...]) -> np.ndarray:
+    if values.dtype == bool:
+        return values
+    if values.dtype.kind in "iu" and np.isin(values, (0, 1)).all():
+        return values.astype(bool)
+    raise ClassifierError(
+        f"classifier of predicate {predicate!r} on {format_atom((predicate, *objects))} returned "
+        f"{values.dtype} values, not truth values; return a bool (or a boolean array)"
+    )
+
+
+class Abstraction:
+    """A PDDL task's predicates bound to classifiers: observation -> abstract state.
+
+    Args:
+        task: the parsed domain and problem.
+        classifiers: one classifier per fluent predicate (see :func:`check_classifiers`).
+    """
+
+    def __init__(self, task: PddlTask, classifiers: Mapping[str, Classifier]):
+        check_classifiers(task, classifiers)
+        self.task = task
+        self.classifiers = dict(classifiers)
+        self.static_atoms: AbstractState = task.static_atoms()
+        self.fluent_atoms: tuple[Atom, ...] = tuple(
+            (name, *objects)
+            for name in sorted(task.fluent_predicates)
+            for objects in self.groundings(name)
+        )
+        self._all = AtomEvaluator(self.fluent_atoms, self.classifiers)
+
+    def groundings(self, predicate: str) -> list[tuple[str, ...]]:
+        """Every tuple of objects of the right types for ``predicate``."""
+        signature = self.task.predicates[predicate]
+        pools = [self.task.objects_of_type(t) for t in signature.parameter_types]
+        return list(itertools.product(*pools))
+
+    def is_static(self, atom: Atom) -> bool:
+        return atom[0] in self.task.static_predicates
+
+    def evaluator(self, atoms: Sequence[Atom]) -> AtomEvaluator:
+        """An evaluator for a subset of the fluent atoms (what progress tracking needs)."""
+        unknown = [a for a in atoms if a[0] not in self.classifiers]
+        if unknown:
+            raise RegistrationError(f"atoms {unknown[:3]} are not fluent atoms of this domain")
+        return AtomEvaluator(atoms, self.classifiers)
+
+    def classify_batch(self, observations: Any) -> np.ndarray:
+        """Truth of every fluent atom for a batch: shape ``(N, len(self.fluent_atoms))``."""
+        return self._all(observations)
+
+    def abstract_state(self, obs: Any) -> AbstractState:
+        """ŝ = Abstract(s): the fluent atoms that hold, plus the static atoms of ``:init``."""
+        held = self._all(obs)
+        if held.ndim != 1:
+            raise ValueError("abstract_state takes one observation; use classify_batch for many")
+        return self.static_atoms | {a for a, h in zip(self.fluent_atoms, held, strict=True) if h}

@@ -1,0 +1,244 @@
+"""The :class:`Potential` extension point, the context it sees, and the potential registry.
+
+A potential φ maps the *augmented* state the shaping wrapper keeps — the observation, the plan
+progress ``max_idx`` and the time index — to a number. The wrapper computes
+F = γ·φ(s') − φ(s) from it; a potential never computes shaping itself and never reaches into an
+environment: everything it may use is in the :class:`ShapingContext`.
+
+Writing one takes one method:
+
+    >>> class HalfWay(Potential):
+    ...     '''1 once half of the plan is done, else 0.'''
+    ...     def potential(self, ctx: ShapingContext) -> float:
+    ...         return float(2 * ctx.progress >= ctx.final)
+    >>> phi = HalfWay(scale=10.0)
+    >>> phi(ShapingContext(obs=None, progress=3, t=7, subgoals=(frozenset(),) * 5))
+    10.0
+
+Register it under an id with :func:`register_potential`, or pass ``"my_module:HalfWay"``
+wherever a potential is asked for (``gymnasium.make(..., potential="my_module:HalfWay")``,
+``planshape bench --potential my_module:HalfWay``).
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+from abc import ABC, abstractmethod
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, ClassVar, Protocol
+
+import numpy as np
+
+from planshape.errors import BadInputError, PotentialError, UnknownIdError
+from planshape.planning.model import AbstractState
+
+
+class Geometry(Protocol):
+    """The task's hooks that relate abstract subgoals to coordinates (for distance potentials).
+
+    ``locate(subgoal)`` gives, for each entity the subgoal constrains (``"ee"``, ``"box"``, …),
+    the coordinates it must be at; the mapping's order is the priority order. ``positions(obs)``
+    gives every entity's current coordinates in an observation.
+    """
+
+    def locate(self, subgoal: AbstractState) -> Mapping[str, np.ndarray]: ...
+
+    def positions(self, obs: Any) -> Mapping[str, np.ndarray]: ...
+
+
+@dataclass(slots=True)
+class ShapingContext:
+    """Everything a potential may look at for one state of an episode.
+
+    Attributes:
+        obs: the observation s.
+        progress: ``max_idx``, the furthest plan subgoal reached in this episode so far.
+        t: the time index: the number of steps taken since ``reset`` (0 at reset).
+        subgoals: Ŝ = [ŝ0 … ŝn], the plan's abstract states.
+        geometry: the task's ``locate``/``positions`` hooks, when the task has coordinates.
+        abstraction: maps ``obs`` to its abstract state (see :attr:`abstract_state`).
+    """
+
+    obs: Any
+    progress: int
+    t: int
+    subgoals: tuple[AbstractState, ...]
+    geometry: Geometry | None = None
+    abstraction: Any = None
+    _abstract_state: AbstractState | None = field(default=None, repr=False)
+
+    @property
+    def final(self) -> int:
+        """Index of the plan's last subgoal (the plan length)."""
+        return len(self.subgoals) - 1
+
+    @property
+    def next_index(self) -> int:
+        """Index of the subgoal to reach next (the last one once the plan is done)."""
+        return min(self.progress + 1, self.final)
+
+    @property
+    def abstract_state(self) -> AbstractState:
+        """ŝ = Abstract(s), computed on first use only (all groundings are classified)."""
+        if self._abstract_state is None:
+            if self.abstraction is None:
+                raise PotentialError("this context has no abstraction to compute ŝ from")
+            self._abstract_state = self.abstraction.abstract_state(self.obs)
+        return self._abstract_state
+
+    def require_geometry(self, who: str) -> Geometry:
+        if self.geometry is None:
+            raise BadInputError(
+                f"potential {who!r} needs the task's locate/positions hooks, and this task's "
+                "abstract model defines none; pick a potential that uses progress only"
+            )
+        return self.geometry
+
+
+class Potential(ABC):
+    """Base class of every potential: implement :meth:`potential`, nothing else.
+
+    The base class applies ``scale``, checks that the value is finite (naming the potential
+    when it is not) and declares what the invariance checker needs to know.
+
+    Args:
+        scale: multiplies φ. The shaping term is scale-equivariant, so scale sets how loud the
+            shaping is relative to the task reward without touching which policies are optimal.
+    """
+
+    #: set True when φ depends on ``ctx.t``; the invariance checker then uses a time-augmented,
+    #: finite-horizon MDP (Devlin & Kudenko 2012).
+    time_dependent: ClassVar[bool] = False
+    #: the registered id, filled in by :func:`make_potential`; used in messages and results.
+    id: str = ""
+
+    def __init__(self, scale: float = 1.0):
+        if not math.isfinite(scale):
+            raise BadInputError(f"{type(self).__name__}: scale must be finite, not {scale}")
+        self.scale = float(scale)
+
+    @abstractmethod
+    def potential(self, ctx: ShapingContext) -> float:
+        """φ of the augmented state in ``ctx``, before ``scale``."""
+
+    def __call__(self, ctx: ShapingContext) -> float:
+        value = self.scale * float(self.potential(ctx))
+        if not math.isfinite(value):
+            raise PotentialError(
+                f"potential {self.name!r} returned {value} at progress={ctx.progress}, t={ctx.t}; "
+                "a potential must be finite everywhere (guard divisions and logs)"
+            )
+        return value
+
+    @property
+    def name(self) -> str:
+        return self.id or f"{type(self).__module__}:{type(self).__qualname__}"
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}(scale={self.scale})"
+
+
+# --------------------------------------------------------------------------------------------
+# registry: id -> "module:attr", resolved only when made (like gymnasium's entry points)
+
+_REGISTRY: dict[str, tuple[str, dict[str, Any]]] = {}
+
+
+def register_potential(potential_id: str, entry_point: str, **kwargs: Any) -> None:
+    """Register ``entry_point`` (``"module:attr"``) under ``potential_id`` with default kwargs.
+
+    Example:
+        >>> register_potential("doc-half-way", "planshape.baselines.paper:PlanBased", scale=0.5)
+        >>> make_potential("doc-half-way").scale
+        0.5
+    """
+    if ":" not in entry_point:
+        raise BadInputError(f"entry point {entry_point!r} must look like 'module:attr'")
+    _REGISTRY[potential_id] = (entry_point, dict(kwargs))
+
+
+def potential_ids() -> list[str]:
+    """The registered potential ids, sorted."""
+    return sorted(_REGISTRY)
+
+
+def load_reference(reference: str) -> Any:
+    """Import ``"module:attr"`` and return the attribute, with errors that say what failed."""
+    module_name, _, attr = reference.partition(":")
+    if not module_name or not attr:
+        raise BadInputError(f"reference {reference!r} must look like 'module:attr'")
+    try:
+        module = importlib.import_module(module_name)
+    except ModuleNotFoundError as exc:
+        raise BadInputError(
+            f"cannot import module {module_name!r} of {reference!r} ({exc}); is it on sys.path "
+            "(run from the folder that holds it, or install it)?"
+        ) from exc
+    try:
+        target: Any = module
+        for part in attr.split("."):
+            target = getattr(target, part)
+    except AttributeError as exc:
+        raise BadInputError(f"module {module_name!r} has no attribute {attr!r}") from exc
+    return target
+
+
+def make_potential(reference: str | Potential | type[Potential], **kwargs: Any) -> Potential:
+    """A :class:`Potential` from a registered id, a ``"module:attr"`` reference, a subclass or
+    an instance. ``kwargs`` override the registered defaults.
+
+    Example:
+        >>> make_potential("plan-based").name
+        'plan-based'
+    """
+    potential_id = ""
+    if isinstance(reference, Potential):
+        if kwargs:
+            raise BadInputError("keyword arguments cannot be applied to a potential instance")
+        return reference
+    if isinstance(reference, str):
+        if reference in _REGISTRY:
+            potential_id = reference
+            entry_point, defaults = _REGISTRY[reference]
+            kwargs = {**defaults, **kwargs}
+            target = load_reference(entry_point)
+        elif ":" in reference:
+            potential_id = reference
+            target = load_reference(reference)
+        else:
+            raise UnknownIdError(
+                "potential",
+                reference,
+                _REGISTRY,
+                hint="Pass a registered id or 'module:attr' of a Potential subclass",
+            )
+    else:
+        target = reference
+    potential = _instantiate(target, kwargs, potential_id or repr(reference))
+    if potential_id and not potential.id:
+        potential.id = potential_id
+    return potential
+
+
+def _instantiate(target: Any, kwargs: dict[str, Any], label: str) -> Potential:
+    if isinstance(target, Potential):
+        if kwargs:
+            raise BadInputError(f"{label} is a potential instance; it takes no keyword arguments")
+        return target
+    if isinstance(target, type) and not issubclass(target, Potential):
+        raise BadInputError(
+            f"{label} is the class {target.__name__}, which does not subclass "
+            "planshape.potentials.Potential; subclass it and implement potential(ctx)"
+        )
+    if not callable(target):
+        raise BadInputError(f"{label} is neither a Potential subclass nor a factory")
+    try:
+        potential = target(**kwargs)
+    except TypeError as exc:
+        raise BadInputError(f"cannot construct {label} with {kwargs}: {exc}") from exc
+    if not isinstance(potential, Potential):
+        raise BadInputError(f"{label} returned {type(potential).__name__}, not a Potential")
+    return potential
+

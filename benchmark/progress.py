@@ -1,0 +1,110 @@
+"""When a subgoal counts as reached, and how plan progress (``max_idx``) moves.
+
+Definitions (they are what the tests check):
+
+* The *fluent part* of an abstract state is the set of its atoms whose predicate is fluent.
+* With ``match="fluents"`` (the default) subgoal ŝ_i is **reached** in observation s when every
+  fluent atom of ŝ_i holds in s. Atoms that ŝ_i does not contain may hold or not: overlapping
+  regions or a box that is also touched never hide progress.
+* With ``match="exact"`` subgoal ŝ_i is reached when the fluent part of Abstract(s) *equals* the
+  fluent part of ŝ_i: this is ``Ŝ.index(ŝ)`` of the source paper's Algorithm 1, kept for
+  fidelity experiments.
+* Progress starts, on ``reset``, at the furthest subgoal reached in the initial observation, or
+  0 if none is. After each step it becomes ``max(progress, furthest subgoal reached now)``: it
+  only moves forward, it may skip subgoals, and it never drops when the agent leaves a subgoal.
+
+Example:
+    >>> import numpy as np
+    >>> from planshape.abstraction import Abstraction
+    >>> from planshape.planning.model import PddlTask, PredicateSignature
+    >>> task = PddlTask("d", "p", {"at": PredicateSignature("at", ("place",))},
+    ...     {"object": None, "place": "object"}, {"a": "place", "b": "place", "c": "place"},
+    ...     frozenset({("at", "a")}), frozenset({("at", "c")}), frozenset())
+    >>> centres = {"a": 0.0, "b": 1.0, "c": 2.0}
+    >>> abstraction = Abstraction(task, {"at": lambda obs, p: abs(obs[..., 0] - centres[p]) < .3})
+    >>> plan = [frozenset({("at", p)}) for p in "abc"]
+    >>> tracker = PlanProgress(plan, abstraction)
+    >>> progress = tracker.initial(np.array([0.0]))
+    >>> progress = tracker.advance(progress, np.array([2.0]))  # skipped b: still counts
+    >>> progress, tracker.advance(progress, np.array([0.0]))  # walking back keeps progress
+    (2, 2)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any, Literal
+
+import numpy as np
+
+from planshape.abstraction import Abstraction
+from planshape.planning.model import AbstractState
+
+SubgoalMatch = Literal["fluents", "exact"]
+
+
+class PlanProgress:
+    """Tracks the furthest subgoal of a plan that an episode has reached.
+
+    Args:
+        subgoals: Ŝ = [ŝ0 … ŝn], the plan's abstract states (a ``Plan.subgoals``).
+        abstraction: the classifiers that decide which atoms hold.
+        match: the reached test, ``"fluents"`` or ``"exact"`` (see the module docstring).
+    """
+
+    def __init__(
+        self,
+        subgoals: Sequence[AbstractState],
+        abstraction: Abstraction,
+        match: SubgoalMatch = "fluents",
+    ):
+        if match not in ("fluents", "exact"):
+            raise ValueError(f"match must be 'fluents' or 'exact', not {match!r}")
+        if not subgoals:
+            raise ValueError("a plan has at least one subgoal (its initial state)")
+        self.subgoals = tuple(subgoals)
+        self.abstraction = abstraction
+        self.match = match
+        fluent_parts = [
+            frozenset(a for a in s if not abstraction.is_static(a)) for s in self.subgoals
+        ]
+        if match == "fluents":
+            atoms = sorted(frozenset().union(*fluent_parts))
+        else:
+            atoms = list(abstraction.fluent_atoms)
+        self._evaluate = abstraction.evaluator(atoms)
+        column = {atom: j for j, atom in enumerate(atoms)}
+        self._required = np.zeros((len(self.subgoals), len(atoms)), dtype=bool)
+        for i, part in enumerate(fluent_parts):
+            self._required[i, [column[a] for a in part]] = True
+        self._not_required = ~self._required
+
+    @property
+    def final(self) -> int:
+        """The index of the last subgoal (the plan's length)."""
+        return len(self.subgoals) - 1
+
+    def reached(self, obs: Any) -> np.ndarray:
+        """Which subgoals are reached: shape ``batch_shape + (len(subgoals),)``."""
+        held = self._evaluate(obs)[..., None, :]
+        if self.match == "fluents":
+            return ~np.any(self._required & ~held, axis=-1)
+        return np.all(self._required == held, axis=-1)
+
+    def furthest(self, obs: Any) -> np.ndarray | int:
+        """Index of the furthest subgoal reached in ``obs``, or -1 when none is."""
+        reached = self.reached(obs)
+        last = reached.shape[-1] - 1 - np.argmax(reached[..., ::-1], axis=-1)
+        result = np.where(reached.any(axis=-1), last, -1)
+        return int(result) if result.ndim == 0 else result
+
+    def initial(self, obs: Any) -> np.ndarray | int:
+        """Progress right after ``reset``: the furthest subgoal reached, at least 0."""
+        return np.maximum(self.furthest(obs), 0) if np.ndim(obs) > 1 else max(self.furthest(obs), 0)
+
+    def advance(self, progress: np.ndarray | int, obs: Any) -> np.ndarray | int:
+        """Progress after a step to ``obs``: never smaller than before."""
+        furthest = self.furthest(obs)
+        if isinstance(furthest, int):
+            return max(int(progress), furthest)
+        return np.maximum(progress, furthest)

@@ -1,0 +1,121 @@
+"""Potential-based reward shaping as a :class:`gymnasium.Wrapper`.
+
+On every step the wrapper classifies the new observation, moves plan progress forward, evaluates
+φ on the augmented state (observation, progress, time) and returns R + F with
+
+    F = γ·φ(s') − φ(s),
+
+obeying the correctness rules of ARCHITECTURE.md:
+
+1. γ is a required argument and must equal the learner's discount
+   (:func:`planshape.training.check_gamma` refuses a mismatch).
+2. φ(s') = 0 when the episode *terminates*; on truncation φ(s') is used as usual, so that a
+   learner that bootstraps on truncation stays correct.
+3. φ(s) is the value stored at the previous step, never recomputed with newer progress, so over
+   an episode Σ γ^t F_t = γ^T φ_T − φ_0.
+4. Progress and the time index reset on ``reset()``.
+
+Place the wrapper *inside* each environment of a vectorized env (stable-baselines3's VecEnv
+handles truncation bootstrapping outside it), which is what ``gymnasium.make(id,
+reward="shaped", ...)`` gives.
+
+Example:
+    >>> import gymnasium
+    >>> import planshape
+    >>> env = gymnasium.make("planshape/Reach-v0", reward="shaped", potential="plan-based",
+    ...                      model="multi", gamma=0.99)  # doctest: +SKIP
+    >>> obs, info = env.reset(seed=0)  # doctest: +SKIP
+    >>> obs, reward, done, cut, info = env.step(env.action_space.sample())  # doctest: +SKIP
+    >>> info["reward_original"] + info["shaping"] == reward  # doctest: +SKIP
+    True
+"""
+
+from __future__ import annotations
+
+from typing import Any, SupportsFloat
+
+import gymnasium
+
+from planshape.errors import BadInputError
+from planshape.potentials import Geometry, Potential, ShapingContext
+from planshape.progress import PlanProgress
+
+
+class PotentialShaping(gymnasium.Wrapper):
+    """Adds F = γ·φ(s') − φ(s) to the reward of ``env``.
+
+    Args:
+        env: the task environment with its own (sparse or dense) reward.
+        potential: φ, see :class:`planshape.potentials.Potential`.
+        progress: the plan's subgoals and the reached test (:class:`PlanProgress`).
+        gamma: the learner's discount, 0 < γ ≤ 1. Required: a shaping γ that differs from the
+            learner's changes the optimal policy.
+        geometry: the task's ``locate``/``positions`` hooks, for potentials that use distances.
+
+    ``info`` gains, on every step: ``reward_original`` (the reward before shaping),
+    ``shaping`` (F), ``potential`` (φ of the new state as used in F), ``progress`` (max_idx);
+    the task's own ``success`` passes through. After ``reset`` it gains ``potential`` and
+    ``progress``.
+    """
+
+    def __init__(
+        self,
+        env: gymnasium.Env,
+        potential: Potential,
+        progress: PlanProgress,
+        *,
+        gamma: float,
+        geometry: Geometry | None = None,
+    ):
+        super().__init__(env)
+        if isinstance(gamma, bool) or not isinstance(gamma, int | float) or not 0 < gamma <= 1:
+            raise BadInputError(
+                f"gamma must be a number in (0, 1], the learner's discount; got {gamma!r}"
+            )
+        self.potential = potential
+        self.progress = progress
+        self.geometry = geometry
+        self.shaping_gamma = float(gamma)
+        self._max_idx = 0
+        self._t = 0
+        self._phi_prev = 0.0
+
+    def _phi(self, obs: Any) -> float:
+        return self.potential(
+            ShapingContext(
+                obs=obs,
+                progress=self._max_idx,
+                t=self._t,
+                subgoals=self.progress.subgoals,
+                geometry=self.geometry,
+                abstraction=self.progress.abstraction,
+            )
+        )
+
+    def reset(self, **kwargs: Any) -> tuple[Any, dict[str, Any]]:
+        obs, info = self.env.reset(**kwargs)
+        self._t = 0
+        self._max_idx = int(self.progress.initial(obs))
+        self._phi_prev = self._phi(obs)
+        info["potential"] = self._phi_prev
+        info["progress"] = self._max_idx
+        return obs, info
+
+    def step(self, action: Any) -> tuple[Any, SupportsFloat, bool, bool, dict[str, Any]]:
+        obs, reward, terminated, truncated, info = self.env.step(action)
+        self._t += 1
+        self._max_idx = int(self.progress.advance(self._max_idx, obs))
+        phi = 0.0 if terminated else self._phi(obs)
+        shaping = self.shaping_gamma * phi - self._phi_prev
+        self._phi_prev = phi
+        info["reward_original"] = reward
+        info["shaping"] = shaping
+        info["potential"] = phi
+        info["progress"] = self._max_idx
+        return obs, float(reward) + shaping, terminated, truncated, info
+
+    @property
+    def max_idx(self) -> int:
+        """The current episode's progress (read-only)."""
+        return self._max_idx
+
