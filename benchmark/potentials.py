@@ -25,7 +25,7 @@ from __future__ import annotations
 import importlib
 import math
 from abc import ABC, abstractmethod
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, ClassVar, Protocol
 
@@ -64,7 +64,7 @@ class ShapingContext:
     obs: Any
     progress: int
     t: int
-    subgoals: tuple[AbstractState, ...]
+    subgoals: Sequence[AbstractState]
     geometry: Geometry | None = None
     abstraction: Any = None
     _abstract_state: AbstractState | None = field(default=None, repr=False)

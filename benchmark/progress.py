@@ -47,7 +47,8 @@ class PlanProgress:
     """Tracks the furthest subgoal of a plan that an episode has reached.
 
     Args:
-        subgoals: Ŝ = [ŝ0 … ŝn], the plan's abstract states (a ``Plan.subgoals``).
+        subgoals: Ŝ = [ŝ0 … ŝn], the plan's abstract states (a ``Plan.subgoals``; its
+            ``fluents`` view is used when it has one, so full states are never built here).
         abstraction: the classifiers that decide which atoms hold.
         match: the reached test, ``"fluents"`` or ``"exact"`` (see the module docstring).
     """
@@ -62,11 +63,11 @@ class PlanProgress:
             raise ValueError(f"match must be 'fluents' or 'exact', not {match!r}")
         if not subgoals:
             raise ValueError("a plan has at least one subgoal (its initial state)")
-        self.subgoals = tuple(subgoals)
+        self.subgoals = subgoals
         self.abstraction = abstraction
         self.match = match
-        fluent_parts = [
-            frozenset(a for a in s if not abstraction.is_static(a)) for s in self.subgoals
+        fluent_parts = getattr(subgoals, "fluents", None) or [
+            frozenset(a for a in s if not abstraction.is_static(a)) for s in subgoals
         ]
         if match == "fluents":
             atoms = sorted(frozenset().union(*fluent_parts))

@@ -59,7 +59,9 @@ def test_vectorized_and_per_atom_classifiers_agree_on_batches():
     vectorized = Abstraction(line_task(), {"at": Vectorized(near_all)}).classify_batch(observations)
     assert per_atom.shape == (97, 3)
     np.testing.assert_array_equal(per_atom, vectorized)
-    one_by_one = np.stack([Abstraction(line_task(), {"at": at}).classify_batch(o) for o in observations])
+    one_by_one = np.stack(
+        [Abstraction(line_task(), {"at": at}).classify_batch(o) for o in observations]
+    )
     np.testing.assert_array_equal(per_atom, one_by_one)
 
 

@@ -61,4 +61,6 @@ def test_batch_progress_equals_one_at_a_time(xs):
     for o in observations:
         running = tracker.advance(running, o)
         expected.append(running)
-    assert expected == list(np.maximum.accumulate([max(tracker.furthest(o), 0) for o in observations]))
+    assert expected == list(
+        np.maximum.accumulate([max(tracker.furthest(o), 0) for o in observations])
+    )

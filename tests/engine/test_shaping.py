@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -91,7 +92,7 @@ def test_shaping_telescopes_and_zeroes_at_termination(trajectory, potential, gam
         )
         assert phis[-1] == pytest.approx(potential(ctx))
     # Progress never decreases.
-    assert all(b >= a for a, b in zip(progresses, progresses[1:], strict=False))
+    assert all(b >= a for a, b in itertools.pairwise(progresses))
 
 
 @settings(max_examples=60, deadline=None)
