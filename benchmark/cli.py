@@ -185,6 +185,11 @@ def _atoms(state: frozenset) -> str:
     return " ".join(sorted(map(format_atom, state))) or "(no atoms)"
 
 
+# --------------------------------------------------------------------------- other subcommands
+# Modules that define subcommands register them when imported; they import `subcommand` from
+# this module, so they are imported last.
+from planshape import catalog as _catalog  # noqa: E402,F401
+
 if __name__ == "__main__":  # python -m planshape.cli: use the module that others register into
     from planshape.cli import main as _main
 

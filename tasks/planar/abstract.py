@@ -1,0 +1,374 @@
+"""Abstract models of reach, push and maze-reach: PDDL places, classifiers and coordinates.
+
+Three granularities per task, following the source paper:
+
+* ``single``: one intermediate subgoal (reach and maze-reach: a via point; push: the end
+  effector behind the box, then one push to the goal);
+* ``multi``: three waypoints (push: the end effector behind the box, then the box through two
+  waypoints to the goal);
+* ``grid``: the workspace cut into square cells of :data:`CELL` metres aligned on the goal, with
+  ``neighbors`` between 4-adjacent cells; in maze-reach, a move whose straight segment would
+  touch a wall (grown by the end effector's radius) is not a neighbour, so the plan goes around.
+  Push's grid model is Sokoban-like: the end effector pushes the box one cell from the cell
+  opposite, and ends in the cell the box left.
+
+Predicates are ``(robot_at ?p)`` — the end effector's centre is in place ``p`` — and, in push,
+``(object_at ?b ?p)`` — the box's centre is in place ``p``. Waypoints are discs (radius
+:data:`PLACE_RADIUS`, the success radius, except the places behind the box); grid cells are the
+squares that tile the workspace. The shipped problems name the places; :data:`PLACES` gives
+their coordinates.
+
+Example:
+    >>> model = reach_multi()
+    >>> sorted(model.classifiers)
+    ['robot_at']
+    >>> targets = model.geometry.locate(frozenset({("robot_at", "w2")}))
+    >>> [round(float(v), 3) for v in targets["ee"]]
+    [0.475, -0.03]
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from planshape.abstraction import Vectorized
+from planshape.planning.grid import GridNames, cell_name, grid_pddl
+from planshape.planning.model import AbstractState
+from planshape.registration import AbstractModel
+from planshape.tasks.common import generated_file, pddl_file
+from planshape.tasks.planar.geometry import GEOMETRY, Point
+
+#: side of a grid cell (m): 2.5 steps of the end effector, and the box's contact distance.
+CELL = 0.05
+#: radius of a waypoint place: the success radius, so reaching the goal place is success.
+PLACE_RADIUS = GEOMETRY.success_threshold
+#: radius of the places where the end effector waits behind the box before a push.
+BEHIND_RADIUS = 0.03
+#: distance between the box's centre and the end effector's centre when they touch
+CONTACT = GEOMETRY.box_half_size + GEOMETRY.ee_radius
+
+
+@dataclass(frozen=True)
+class Places:
+    """Named regions of the plane: discs of one radius, or squares of one half side.
+
+    Example:
+        >>> places = Places({"a": (0.0, 0.0), "b": (1.0, 0.0)}, size=0.1)
+        >>> places.contains(np.array([[0.05, 0.0], [0.5, 0.0]]), places.index(["a", "b"])).tolist()
+        [[True, False], [False, False]]
+    """
+
+    centres: Mapping[str, Point]
+    size: float
+    square: bool = False
+
+    def __post_init__(self) -> None:
+        names = tuple(self.centres)
+        object.__setattr__(self, "_names", {n: i for i, n in enumerate(names)})
+        object.__setattr__(self, "_xy", np.array([self.centres[n] for n in names], float))
+
+    def index(self, names: Sequence[str]) -> np.ndarray:
+        lookup: dict[str, int] = self._names  # type: ignore[attr-defined]
+        return np.array([lookup[n] for n in names], dtype=np.intp)
+
+    def centre(self, name: str) -> np.ndarray:
+        return self._xy[self._names[name]]  # type: ignore[attr-defined]
+
+    def contains(self, points: np.ndarray, index: np.ndarray) -> np.ndarray:
+        """``points`` (..., 2) against places ``index``: shape (..., len(index))."""
+        offset = points[..., None, :] - self._xy[index]  # type: ignore[attr-defined]
+        if self.square:
+            return np.all(np.abs(offset) < self.size, axis=-1)
+        return np.einsum("...i,...i->...", offset, offset) < self.size**2
+
+
+class InPlace:
+    """Vectorized classifier: the entity at ``obs[position]`` is in the place named by argument
+    ``place_arg`` of each grounding (``robot_at ?p`` -> 0, ``object_at ?b ?p`` -> 1)."""
+
+    def __init__(self, places: Sequence[Places], position: slice, place_arg: int):
+        self.places = places
+        self.position = position
+        self.place_arg = place_arg
+        self._groundings: object = None
+        self._plan: list[tuple[Places, np.ndarray, np.ndarray]] = []
+
+    def _route(self, groundings: Sequence[tuple[str, ...]]) -> None:
+        """Which place table answers which grounding (cached for the evaluator's fixed list)."""
+        self._plan = []
+        names = [g[self.place_arg] for g in groundings]
+        for table in self.places:
+            columns = [i for i, n in enumerate(names) if n in table.centres]
+            if columns:
+                picked = [names[i] for i in columns]
+                self._plan.append((table, np.array(columns), table.index(picked)))
+        self._groundings = groundings
+
+    def __call__(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> np.ndarray:
+        if groundings is not self._groundings:
+            self._route(groundings)
+        points = np.asarray(obs, dtype=float)[..., self.position]
+        out = np.zeros((*points.shape[:-1], len(groundings)), dtype=bool)
+        for table, columns, index in self._plan:
+            out[..., columns] = table.contains(points, index)
+        return out
+
+
+class PlanarGeometryHooks:
+    """``locate``/``positions`` for the distance potentials: the end effector first, then the
+    box (the source paper's priority)."""
+
+    def __init__(self, places: Sequence[Places], entities: Mapping[str, tuple[str, int, slice]]):
+        self.places = places
+        #: entity -> (predicate that places it, argument index of the place, obs slice)
+        self.entities = dict(entities)
+        self._located: dict[AbstractState, dict[str, np.ndarray]] = {}
+
+    def _centre(self, name: str) -> np.ndarray:
+        for table in self.places:
+            if name in table.centres:
+                return table.centre(name)
+        raise KeyError(f"place {name!r} has no coordinates")
+
+    def locate(self, subgoal: AbstractState) -> Mapping[str, np.ndarray]:
+        if subgoal not in self._located:
+            targets = {}
+            for entity, (predicate, arg, _) in self.entities.items():
+                for atom in subgoal:
+                    if atom[0] == predicate:
+                        targets[entity] = self._centre(atom[1 + arg])
+            self._located[subgoal] = targets
+        return self._located[subgoal]
+
+    def positions(self, obs: np.ndarray) -> Mapping[str, np.ndarray]:
+        obs = np.asarray(obs)
+        return {entity: obs[s] for entity, (_, _, s) in self.entities.items()}
+
+
+EE = slice(0, 2)
+BOX = slice(2, 4)
+_EE_ENTITY = {"ee": ("robot_at", 0, EE)}
+_PUSH_ENTITIES = {"ee": ("robot_at", 0, EE), "box": ("object_at", 1, BOX)}
+
+
+def _along(a: Point, b: Point, fraction: float) -> Point:
+    return (a[0] + fraction * (b[0] - a[0]), a[1] + fraction * (b[1] - a[1]))
+
+
+def _behind(box: Point, goal: Point) -> Point:
+    """Where the end effector touches the box from the side opposite to ``goal``."""
+    dx, dy = goal[0] - box[0], goal[1] - box[1]
+    norm = math.hypot(dx, dy)
+    return (box[0] - CONTACT * dx / norm, box[1] - CONTACT * dy / norm)
+
+
+G = GEOMETRY
+#: coordinates of every named place of the shipped single and multi problems, per task.
+PLACES: dict[str, dict[str, Point]] = {
+    "reach": {
+        "start": G.ee_start,
+        "via": _along(G.ee_start, G.reach_goal, 0.5),
+        **{f"w{k}": _along(G.ee_start, G.reach_goal, k / 4) for k in (1, 2, 3)},
+        "goal": G.reach_goal,
+    },
+    "maze-reach": {
+        "start": G.ee_start,
+        "via": (0.30, 0.22),
+        "w1": (0.30, -0.30),
+        "w2": (0.30, 0.22),
+        "w3": (0.50, 0.22),
+        "goal": G.maze_goal,
+    },
+    "push": {
+        "start": G.ee_start,
+        "box_start": G.box_start,
+        "behind_box": _behind(G.box_start, G.box_goal),
+        **{f"w{k}": _along(G.box_start, G.box_goal, k / 3) for k in (1, 2)},
+        **{
+            f"behind_w{k}": _behind(_along(G.box_start, G.box_goal, k / 3), G.box_goal)
+            for k in (1, 2)
+        },
+        "goal": G.box_goal,
+        "behind_goal": _behind(
+            G.box_goal, (2 * G.box_goal[0] - G.box_start[0], 2 * G.box_goal[1] - G.box_start[1])
+        ),
+    },
+}
+
+
+def _waypoint_places(task: str) -> list[Places]:
+    behind = {n: p for n, p in PLACES[task].items() if n.startswith("behind")}
+    waypoints = {n: p for n, p in PLACES[task].items() if n not in behind}
+    tables = [Places(waypoints, PLACE_RADIUS)]
+    if behind:
+        tables.append(Places(behind, BEHIND_RADIUS))
+    return tables
+
+
+def _model(domain: str, problem_path, places: list[Places], entities) -> AbstractModel:
+    classifiers = {
+        predicate: Vectorized(InPlace(places, position, arg))
+        for predicate, arg, position in entities.values()
+    }
+    return AbstractModel(
+        domain=pddl_file(domain, "domain.pddl"),
+        problem=problem_path,
+        classifiers=classifiers,
+        geometry=PlanarGeometryHooks(places, entities),
+    )
+
+
+def _waypoint_model(task: str, granularity: str) -> AbstractModel:
+    entities = _PUSH_ENTITIES if task == "push" else _EE_ENTITY
+    return _model(task, pddl_file(task, f"{granularity}.pddl"), _waypoint_places(task), entities)
+
+
+def reach_single() -> AbstractModel:
+    return _waypoint_model("reach", "single")
+
+
+def reach_multi() -> AbstractModel:
+    return _waypoint_model("reach", "multi")
+
+
+def maze_reach_single() -> AbstractModel:
+    return _waypoint_model("maze-reach", "single")
+
+
+def maze_reach_multi() -> AbstractModel:
+    return _waypoint_model("maze-reach", "multi")
+
+
+def push_single() -> AbstractModel:
+    return _waypoint_model("push", "single")
+
+
+def push_multi() -> AbstractModel:
+    return _waypoint_model("push", "multi")
+
+
+# ---- grids ------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Square cells of side ``cell`` whose centres lie in the workspace, aligned so that
+    ``anchor`` (the goal) is a cell centre. Row 0 is the top row; columns grow with x."""
+
+    anchor: Point
+    cell: float = CELL
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        (_lx, ly), (hx, _hy) = G.workspace.low, G.workspace.high
+        self_cols = math.floor((hx - self.x0) / self.cell + 1e-9) + 1
+        self_rows = math.floor((self.y_top - ly) / self.cell + 1e-9) + 1
+        return self_rows, self_cols
+
+    @property
+    def x0(self) -> float:
+        lx = G.workspace.low[0]
+        return self.anchor[0] - math.floor((self.anchor[0] - lx) / self.cell + 1e-9) * self.cell
+
+    @property
+    def y_top(self) -> float:
+        hy = G.workspace.high[1]
+        return self.anchor[1] + math.floor((hy - self.anchor[1]) / self.cell + 1e-9) * self.cell
+
+    def centre(self, rc: tuple[int, int]) -> Point:
+        return (self.x0 + rc[1] * self.cell, self.y_top - rc[0] * self.cell)
+
+    def cell_of(self, point: Point) -> tuple[int, int]:
+        return (
+            round((self.y_top - point[1]) / self.cell),
+            round((point[0] - self.x0) / self.cell),
+        )
+
+    def places(self, names: GridNames) -> Places:
+        rows, cols = self.shape
+        centres = {
+            cell_name((r, c), names): self.centre((r, c)) for r in range(rows) for c in range(cols)
+        }
+        return Places(centres, self.cell / 2, square=True)
+
+    def blocked_edges(self, margin: float) -> list[tuple[tuple[int, int], tuple[int, int]]]:
+        """Pairs of adjacent cells whose connecting segment touches a maze wall."""
+        rows, cols = self.shape
+        blocked = []
+        for r in range(rows):
+            for c in range(cols):
+                for other in ((r + 1, c), (r, c + 1)):
+                    if other[0] >= rows or other[1] >= cols:
+                        continue
+                    a, b = self.centre((r, c)), self.centre(other)
+                    points = [_along(a, b, k / 10) for k in range(11)]
+                    if any(w.contains(p, margin) for w in G.maze_walls for p in points):
+                        blocked.append(((r, c), other))
+        return blocked
+
+
+def _grid_names(task: str) -> GridNames:
+    return GridNames(domain=task, problem=f"{task}-grid", cell_type="place")
+
+
+def _navigation_grid(task: str, start: Point, goal: Point, walls: bool) -> AbstractModel:
+    grid, names = Grid(goal), _grid_names(task)
+    rows, cols = grid.shape
+    pddl = grid_pddl(
+        rows,
+        cols,
+        start=grid.cell_of(start),
+        goal=grid.cell_of(goal),
+        blocked_edges=grid.blocked_edges(G.ee_radius) if walls else (),
+        names=names,
+    )
+    problem = generated_file(f"{task}-grid", pddl.problem)
+    return _model(task, problem, [grid.places(names)], _EE_ENTITY)
+
+
+def reach_grid() -> AbstractModel:
+    return _navigation_grid("reach", G.ee_start, G.reach_goal, walls=False)
+
+
+def maze_reach_grid() -> AbstractModel:
+    return _navigation_grid("maze-reach", G.ee_start, G.maze_goal, walls=True)
+
+
+def push_grid_problem(grid: Grid, ee_start: Point, box_start: Point) -> str:
+    """The Sokoban-like push problem on ``grid`` (generated, not shipped)."""
+    names = _grid_names("push")
+    rows, cols = grid.shape
+    inside = {(r, c) for r in range(rows) for c in range(cols)}
+    name = {rc: cell_name(rc, names) for rc in inside}
+    facts = [
+        f"(robot_at {name[grid.cell_of(ee_start)]})",
+        f"(object_at box {name[grid.cell_of(box_start)]})",
+    ]
+    for r, c in sorted(inside):
+        for dr, dc in ((-1, 0), (1, 0), (0, -1), (0, 1)):
+            ahead, further = (r + dr, c + dc), (r + 2 * dr, c + 2 * dc)
+            if ahead in inside:
+                facts.append(f"(neighbors {name[(r, c)]} {name[ahead]})")
+            if ahead in inside and further in inside:
+                # end effector in (r, c) pushes the box from `ahead` to `further`
+                b, f = name[ahead], name[further]
+                facts.append(f"(push_line {name[(r, c)]} {b} {f} {b})")
+    objects = " ".join(name[rc] for rc in sorted(inside))
+    init = "\n         ".join(facts)
+    return f"""(define (problem push-grid)
+  (:domain push)
+  (:objects {objects} - place
+            box - box)
+  (:init {init})
+  (:goal (object_at box {name[grid.cell_of(G.box_goal)]})))
+"""
+
+
+def push_grid() -> AbstractModel:
+    grid = Grid(G.box_goal)
+    problem = generated_file("push-grid", push_grid_problem(grid, G.ee_start, G.box_start))
+    return _model("push", problem, [grid.places(_grid_names("push"))], _PUSH_ENTITIES)

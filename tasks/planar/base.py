@@ -1,0 +1,287 @@
+"""The shared body of the planar tasks: physics stepping, the workspace rule, seeding, reward
+variants and the ``info`` every step reports. Each task module only says what it observes,
+where its goal is and how far it is from it.
+
+Step semantics (from the paper's released code):
+
+* the action is clipped to ``[-1, 1]²``; the servo target is the end effector's *current*
+  position plus ``step_size · action``;
+* a target outside the workspace is **rejected**: the end effector holds its position for that
+  step and ``info["move_rejected"]`` is true (the paper's code skips the move likewise; a
+  non-finite action is rejected the same way);
+* walls and the box are real MuJoCo contacts, so a blocked end effector stops at the wall;
+* the environment never terminates and never truncates: success does not end the episode
+  (the task is to reach the goal and stay there), and the horizon is left to Gymnasium's
+  ``TimeLimit`` (``max_episode_steps`` at registration).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any, ClassVar, Literal
+
+import gymnasium
+import mujoco
+import numpy as np
+from gymnasium import spaces
+
+from planshape.errors import BadInputError, UnknownIdError
+from planshape.tasks.planar.geometry import GEOMETRY, PlanarGeometry, Rect
+from planshape.tasks.planar.model import PHYSICS, PlanarPhysics, planar_mjcf
+
+RewardVariant = Literal["sparse", "dense"]
+REWARD_VARIANTS: tuple[str, ...] = ("sparse", "dense")
+
+# Rejection sampling of random starts and goals gives up after this many draws (only reachable
+# with a custom geometry whose regions leave no room).
+_MAX_DRAWS = 1000
+
+
+class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
+    """Base class of :class:`ReachEnv`, :class:`PushEnv` and :class:`MazeReachEnv`.
+
+    Subclasses set :attr:`task`, :attr:`entities` and the hooks ``_default_goal``,
+    ``_goal_region``, ``_task_distance``, ``_dense_reward`` and, with a box or walls,
+    :attr:`has_box` / :attr:`walls`.
+
+    Args:
+        reward: ``"sparse"`` (1.0 on success, else 0.0) or ``"dense"`` (the task's hand-crafted
+            dense reward, see the subclass).
+        randomize_start: draw the start (end effector, and the box in push) from
+            ``self.np_random`` on every reset instead of the paper's fixed start.
+        randomize_goal: draw the goal from the task's goal region on every reset.
+        render_mode: only ``None`` (no rendering).
+        geometry: the task geometry (the paper's by default).
+    """
+
+    metadata: ClassVar[dict[str, Any]] = {
+        "render_modes": [],
+        "render_fps": round(1.0 / PHYSICS.control_dt),
+    }
+
+    task: ClassVar[str] = ""
+    has_box: ClassVar[bool] = False
+    entities: ClassVar[Mapping[str, slice]] = {"ee": slice(0, 2)}
+    """Where each entity's (x, y) lies in the observation."""
+
+    def __init__(
+        self,
+        reward: RewardVariant = "sparse",
+        randomize_start: bool = False,
+        randomize_goal: bool = False,
+        render_mode: str | None = None,
+        geometry: PlanarGeometry = GEOMETRY,
+    ) -> None:
+        if reward not in REWARD_VARIANTS:
+            raise UnknownIdError(
+                "reward variant",
+                str(reward),
+                REWARD_VARIANTS,
+                hint=f"the {self.task} environment implements 'sparse' and 'dense'; "
+                "'shaped' is applied by gymnasium.make on a registered planshape/ id",
+            )
+        if render_mode is not None:
+            raise BadInputError(
+                f"{self.task}: render_mode={render_mode!r} is not supported; the planar "
+                "environments do not render (use render_mode=None)"
+            )
+        self.reward_variant: RewardVariant = reward
+        self.randomize_start = bool(randomize_start)
+        self.randomize_goal = bool(randomize_goal)
+        self.render_mode = None
+        self.geometry = geometry
+        self.physics: PlanarPhysics = PHYSICS
+
+        self._model = mujoco.MjModel.from_xml_string(
+            planar_mjcf(geometry, box=self.has_box, walls=self.walls, physics=self.physics)
+        )
+        self._data = mujoco.MjData(self._model)
+        self._frame_skip = self.physics.frame_skip
+        self._step_size = float(geometry.step_size)
+        self._threshold = float(geometry.success_threshold)
+        (self._x_lo, self._y_lo) = geometry.workspace.low
+        (self._x_hi, self._y_hi) = geometry.workspace.high
+        self._dense = reward == "dense"
+        self._goal = np.array(self._default_goal(), dtype=np.float64)
+        self._gx, self._gy = float(self._goal[0]), float(self._goal[1])
+
+        self.action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
+        low, high = self._observation_bounds()
+        self.observation_space = spaces.Box(low, high, dtype=np.float32)
+        self._obs_bounds = (low.astype(np.float64).tolist(), high.astype(np.float64).tolist())
+        # A view of the observed coordinates in MjData (its buffers never move).
+        self._qpos_obs = self._data.qpos[: low.shape[0]]
+
+    # ---- hooks -------------------------------------------------------------------------------
+
+    @property
+    def walls(self) -> tuple[Rect, ...]:
+        """Static walls of this task (none by default)."""
+        return ()
+
+    def _default_goal(self) -> tuple[float, float]:
+        raise NotImplementedError
+
+    def _goal_region(self) -> Rect:
+        raise NotImplementedError
+
+    def _task_distance(self, q: list[float]) -> float:
+        """The task's distance to its goal (the paper's final-distance metric), from the
+        observed coordinates ``q`` (qpos as Python floats)."""
+        raise NotImplementedError
+
+    def _dense_reward(self, q: list[float], distance: float) -> float:
+        raise NotImplementedError
+
+    def _sample_start(self) -> None:
+        """Write a random start into qpos (default: the end effector anywhere in the workspace,
+        clear of walls, not already successful)."""
+        region = self.geometry.ee_start_region
+        for _ in range(_MAX_DRAWS):
+            ee = region.sample(self.np_random)
+            if self._ee_start_ok(ee):
+                self._data.qpos[0:2] = ee
+                return
+        raise BadInputError(f"{self.task}: found no valid random start in {_MAX_DRAWS} draws")
+
+    def _sample_goal(self) -> np.ndarray:
+        return self._goal_region().sample(self.np_random)
+
+    # ---- shared machinery --------------------------------------------------------------------
+
+    def _observation_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        ws = self.geometry.workspace
+        low, high = list(ws.low), list(ws.high)
+        if self.has_box:
+            bb = self.geometry.box_bounds
+            low += bb.low
+            high += bb.high
+        return np.array(low, dtype=np.float32), np.array(high, dtype=np.float32)
+
+    def _ee_start_ok(self, ee: np.ndarray) -> bool:
+        clearance = self.geometry.ee_radius + 0.005
+        if any(wall.contains(ee, clearance) for wall in self.walls):
+            return False
+        return bool(np.hypot(ee[0] - self._gx, ee[1] - self._gy) >= 2 * self._threshold)
+
+    def _observation(self, q: list[float]) -> np.ndarray:
+        # The servo overshoots its target by micrometres at most, but an observation on a
+        # bound must stay inside the space: clip (in Python: cheaper than numpy for 2-4 values).
+        lo, hi = self._obs_bounds
+        clipped = [min(max(a, a_lo), a_hi) for a, a_lo, a_hi in zip(q, lo, hi, strict=True)]
+        return np.array(clipped, dtype=np.float32)
+
+    def _info(
+        self, q: list[float], distance: float, success: bool, rejected: bool
+    ) -> dict[str, Any]:
+        info: dict[str, Any] = {
+            "success": success,
+            "distance": distance,
+            "move_rejected": rejected,
+            "ee_position": np.array(q[0:2]),
+            "goal_position": self._goal.copy(),
+        }
+        if self.has_box:
+            info["box_position"] = np.array(q[2:4])
+        return info
+
+    @property
+    def goal(self) -> np.ndarray:
+        """This episode's goal (of the end effector, or of the box in push); a copy."""
+        return self._goal.copy()
+
+    @property
+    def ee_position(self) -> np.ndarray:
+        """The end effector's current (x, y); a copy."""
+        return self._data.qpos[0:2].copy()
+
+    @property
+    def model(self) -> mujoco.MjModel:
+        """The MuJoCo model (read it, do not edit it)."""
+        return self._model
+
+    @property
+    def data(self) -> mujoco.MjData:
+        """The MuJoCo data of the current state."""
+        return self._data
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Start an episode.
+
+        ``options`` may override this episode's positions: ``"goal"``, ``"ee_start"`` and, in
+        push, ``"box_start"`` (each an (x, y) pair); they take precedence over the
+        ``randomize_*`` draws.
+        """
+        super().reset(seed=seed)
+        options = options or {}
+        model, data = self._model, self._data
+        mujoco.mj_resetData(model, data)
+
+        if "goal" in options:
+            self._goal = np.array(options["goal"], dtype=np.float64).reshape(2)
+        elif self.randomize_goal:
+            self._goal = np.asarray(self._sample_goal(), dtype=np.float64)
+        else:
+            self._goal = np.array(self._default_goal(), dtype=np.float64)
+        self._gx, self._gy = float(self._goal[0]), float(self._goal[1])
+
+        if self.randomize_start:
+            self._sample_start()
+        else:
+            self._set_default_start()
+        if "ee_start" in options:
+            data.qpos[0:2] = np.asarray(options["ee_start"], dtype=np.float64).reshape(2)
+        if "box_start" in options:
+            if not self.has_box:
+                raise BadInputError(f"{self.task}: option 'box_start' needs a task with a box")
+            data.qpos[2:4] = np.asarray(options["box_start"], dtype=np.float64).reshape(2)
+        ee = data.qpos[0:2]
+        if not self.geometry.in_workspace(ee):
+            raise BadInputError(
+                f"{self.task}: end-effector start {tuple(ee)} is outside the workspace "
+                f"{self.geometry.workspace}"
+            )
+        if any(wall.distance(ee) < self.geometry.ee_radius for wall in self.walls):
+            raise BadInputError(f"{self.task}: end-effector start {tuple(ee)} overlaps a wall")
+        data.ctrl[0:2] = data.qpos[0:2]
+        mujoco.mj_forward(model, data)
+
+        q = self._qpos_obs.tolist()
+        distance = self._task_distance(q)
+        return self._observation(q), self._info(q, distance, distance < self._threshold, False)
+
+    def _set_default_start(self) -> None:
+        self._data.qpos[0:2] = self.geometry.ee_start
+
+    def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        """Move the end effector by ``step_size · clip(action, -1, 1)`` unless that leaves the
+        workspace (see the module docstring); ``terminated`` and ``truncated`` are always
+        False."""
+        data = self._data
+        x, y = data.qpos[0:2].tolist()
+        ax, ay = action
+        ax = float(ax)
+        ay = float(ay)
+        # Clip to [-1, 1]; NaN falls through the comparisons and fails the workspace test below.
+        ax = -1.0 if ax < -1.0 else (1.0 if ax > 1.0 else ax)
+        ay = -1.0 if ay < -1.0 else (1.0 if ay > 1.0 else ay)
+        tx = x + self._step_size * ax
+        ty = y + self._step_size * ay
+        rejected = not (self._x_lo <= tx <= self._x_hi and self._y_lo <= ty <= self._y_hi)
+        ctrl = data.ctrl
+        if rejected:
+            ctrl[0] = x
+            ctrl[1] = y
+        else:
+            ctrl[0] = tx
+            ctrl[1] = ty
+        mujoco.mj_step(self._model, data, self._frame_skip)
+
+        q = self._qpos_obs.tolist()
+        distance = self._task_distance(q)
+        success = distance < self._threshold
+        reward = self._dense_reward(q, distance) if self._dense else float(success)
+        info = self._info(q, distance, success, rejected)
+        return self._observation(q), reward, False, False, info
