@@ -114,10 +114,17 @@ class AtomEvaluator:
             )
             for predicate, indices in groups.items()
         ]
+        # Atoms grouped by predicate keep their order inside a group, so with one predicate
+        # (the common case for progress tracking) the classifier's answer is the result.
+        self._single = len(self._groups) == 1
 
     def __call__(self, obs: Any) -> np.ndarray:
         """Truth of every atom: shape ``batch_shape + (len(atoms),)``."""
-        obs = np.asarray(obs)
+        if not isinstance(obs, np.ndarray):
+            obs = np.asarray(obs)
+        if self._single:
+            predicate, classifier, _, groundings = self._groups[0]
+            return _classify(predicate, classifier, obs, groundings)
         out = np.zeros((*obs.shape[:-1], len(self.atoms)), dtype=bool)
         for predicate, classifier, indices, groundings in self._groups:
             out[..., indices] = _classify(predicate, classifier, obs, groundings)

@@ -75,10 +75,15 @@ class PlanProgress:
             atoms = list(abstraction.fluent_atoms)
         self._evaluate = abstraction.evaluator(atoms)
         column = {atom: j for j, atom in enumerate(atoms)}
-        self._required = np.zeros((len(self.subgoals), len(atoms)), dtype=bool)
+        required = np.zeros((len(self.subgoals), len(atoms)), dtype=bool)
         for i, part in enumerate(fluent_parts):
-            self._required[i, [column[a] for a in part]] = True
-        self._not_required = ~self._required
+            required[i, [column[a] for a in part]] = True
+        # Subgoal i is reached when the number of its required atoms that hold equals its
+        # size (fluents) or, for exact matching, when no atom disagrees with it: both are one
+        # matrix product per observation.
+        self._required_f = required.T.astype(np.float64)
+        self._sizes = required.sum(axis=1).astype(np.float64)
+        self._signed = np.where(required, 1.0, -1.0).T
 
     @property
     def final(self) -> int:
@@ -87,17 +92,21 @@ class PlanProgress:
 
     def reached(self, obs: Any) -> np.ndarray:
         """Which subgoals are reached: shape ``batch_shape + (len(subgoals),)``."""
-        held = self._evaluate(obs)[..., None, :]
+        held = self._evaluate(obs).astype(np.float64)
         if self.match == "fluents":
-            return ~np.any(self._required & ~held, axis=-1)
-        return np.all(self._required == held, axis=-1)
+            return held @ self._required_f == self._sizes
+        # exact: Σ_j sign_ij·held_j equals size_i only when every required atom holds and no
+        # other atom does
+        return held @ self._signed == self._sizes
 
     def furthest(self, obs: Any) -> np.ndarray | int:
         """Index of the furthest subgoal reached in ``obs``, or -1 when none is."""
         reached = self.reached(obs)
+        if reached.ndim == 1:
+            hits = np.flatnonzero(reached)
+            return int(hits[-1]) if hits.size else -1
         last = reached.shape[-1] - 1 - np.argmax(reached[..., ::-1], axis=-1)
-        result = np.where(reached.any(axis=-1), last, -1)
-        return int(result) if result.ndim == 0 else result
+        return np.where(reached.any(axis=-1), last, -1)
 
     def initial(self, obs: Any) -> np.ndarray | int:
         """Progress right after ``reset``: the furthest subgoal reached, at least 0."""

@@ -80,9 +80,13 @@ class Places:
 
     def contains(self, points: np.ndarray, index: np.ndarray) -> np.ndarray:
         """``points`` (..., 2) against places ``index``: shape (..., len(index))."""
-        offset = points[..., None, :] - self._xy[index]  # type: ignore[attr-defined]
+        return self.contains_centres(points, self._xy[index])  # type: ignore[attr-defined]
+
+    def contains_centres(self, points: np.ndarray, centres: np.ndarray) -> np.ndarray:
+        """``points`` (..., 2) against regions of this table centred at ``centres`` (k, 2)."""
+        offset = points[..., None, :] - centres
         if self.square:
-            return np.all(np.abs(offset) < self.size, axis=-1)
+            return np.abs(offset).max(axis=-1) < self.size
         return np.einsum("...i,...i->...", offset, offset) < self.size**2
 
 
@@ -96,6 +100,7 @@ class InPlace:
         self.place_arg = place_arg
         self._groundings: object = None
         self._plan: list[tuple[Places, np.ndarray, np.ndarray]] = []
+        self._whole = False
 
     def _route(self, groundings: Sequence[tuple[str, ...]]) -> None:
         """Which place table answers which grounding (cached for the evaluator's fixed list)."""
@@ -104,17 +109,21 @@ class InPlace:
         for table in self.places:
             columns = [i for i, n in enumerate(names) if n in table.centres]
             if columns:
-                picked = [names[i] for i in columns]
-                self._plan.append((table, np.array(columns), table.index(picked)))
+                centres = np.array([table.centre(names[i]) for i in columns])
+                self._plan.append((table, np.array(columns), centres))
+        self._whole = len(self._plan) == 1 and len(self._plan[0][1]) == len(names)
         self._groundings = groundings
 
     def __call__(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> np.ndarray:
         if groundings is not self._groundings:
             self._route(groundings)
-        points = np.asarray(obs, dtype=float)[..., self.position]
+        points = obs[..., self.position]
+        if self._whole:  # one table answers every grounding, in order
+            table, _, centres = self._plan[0]
+            return table.contains_centres(points, centres)
         out = np.zeros((*points.shape[:-1], len(groundings)), dtype=bool)
-        for table, columns, index in self._plan:
-            out[..., columns] = table.contains(points, index)
+        for table, columns, centres in self._plan:
+            out[..., columns] = table.contains_centres(points, centres)
         return out
 
 

@@ -1,0 +1,30 @@
+"""The performance figures of the engine and the tasks, in one run (``python -m planshape.perf``).
+
+* planner: cold plan time and cache-hit time on generated 10x10 and 30x30 grids;
+* shaping: time per step shaped over unshaped, same environment and actions;
+* environments: steps per second of reach, push and maze-reach next to PointMaze.
+
+Each section is a script of its own (``planshape.perf_planner``, ``planshape.perf_shaping``,
+``planshape.perf_envs``); they print figures and never fail on a missed goal, so that the figures
+are always reported.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from planshape import perf_envs, perf_planner, perf_shaping
+
+SECTIONS = [("planner", perf_planner), ("shaping", perf_shaping), ("environments", perf_envs)]
+
+
+def main(argv: list[str] | None = None) -> int:
+    del argv  # each section uses its defaults
+    for title, module in SECTIONS:
+        print(f"\n=== {title} ===", flush=True)
+        module.main([])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

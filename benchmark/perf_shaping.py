@@ -1,0 +1,82 @@
+"""Shaping overhead: time per step of a shaped environment over the same environment unshaped.
+
+Both are made with ``gymnasium.make`` in the same process and driven by the same actions;
+timings are medians over interleaved repeats, so drift on a shared machine hits both alike.
+Goal: a ratio ≤ 1.10 on the MuJoCo tasks. Run ``python -m planshape.perf_shaping``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+
+import gymnasium
+import numpy as np
+
+import planshape  # noqa: F401  (registers the tasks)
+
+CASES = [
+    ("planshape/Reach-v0", "plan-based", "grid"),
+    ("planshape/Reach-v0", "distance-varying", "grid"),
+    ("planshape/Push-v0", "plan-based", "grid"),
+    ("planshape/Push-v0", "distance-varying", "multi"),
+    ("planshape/MazeReach-v0", "time-varying", "grid"),
+]
+GOAL = 1.10
+
+
+def seconds_per_step(env: gymnasium.Env, actions: np.ndarray) -> float:
+    """Wall time per step over ``actions``, resetting on episode ends (resets not counted)."""
+    env.reset(seed=0)
+    elapsed = 0.0
+    for action in actions:
+        start = time.perf_counter()
+        _, _, terminated, truncated, _ = env.step(action)
+        elapsed += time.perf_counter() - start
+        if terminated or truncated:
+            env.reset()
+    return elapsed / len(actions)
+
+
+def measure(task: str, potential: str, model: str, steps: int, repeats: int) -> dict:
+    plain = gymnasium.make(task)
+    shaped = gymnasium.make(task, reward="shaped", potential=potential, model=model, gamma=0.99)
+    actions = np.random.default_rng(0).uniform(-1, 1, (steps, 2)).astype(np.float32)
+    seconds_per_step(plain, actions[:500])  # warm up both
+    seconds_per_step(shaped, actions[:500])
+    plain_times, shaped_times = [], []
+    for _ in range(repeats):
+        plain_times.append(seconds_per_step(plain, actions))
+        shaped_times.append(seconds_per_step(shaped, actions))
+    plain_s, shaped_s = statistics.median(plain_times), statistics.median(shaped_times)
+    return {
+        "task": task,
+        "potential": potential,
+        "model": model,
+        "plain_us": plain_s * 1e6,
+        "shaped_us": shaped_s * 1e6,
+        "ratio": shaped_s / plain_s,
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--steps", type=int, default=5000, help="steps per repeat")
+    parser.add_argument("--repeats", type=int, default=5, help="interleaved repeats")
+    args = parser.parse_args(argv)
+    print("shaping overhead (median of interleaved repeats, same actions)")
+    print(f"{'task':24s} {'potential':17s} {'model':6s} {'plain µs':>9s} {'shaped µs':>10s} ratio")
+    rows = [measure(*case, args.steps, args.repeats) for case in CASES]
+    for r in rows:
+        print(
+            f"{r['task']:24s} {r['potential']:17s} {r['model']:6s} {r['plain_us']:9.1f} "
+            f"{r['shaped_us']:10.1f} {r['ratio']:5.2f}"
+        )
+    worst = max(r["ratio"] for r in rows)
+    print(f"worst ratio {worst:.2f} (goal ≤ {GOAL:.2f}): {'met' if worst <= GOAL else 'NOT met'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
