@@ -119,20 +119,31 @@ class AtomEvaluator:
         self._single = len(self._groups) == 1
 
     def __call__(self, obs: Any) -> np.ndarray:
-        """Truth of every atom: shape ``batch_shape + (len(atoms),)``."""
-        if not isinstance(obs, np.ndarray):
+        """Truth of every atom: shape ``batch_shape + (len(atoms),)``.
+
+        ``obs`` is an array (batch axes first, features last) or a mapping of such arrays,
+        as Gymnasium's Dict spaces give (the batch shape is then read from its first value).
+        """
+        if not isinstance(obs, np.ndarray | Mapping):
             obs = np.asarray(obs)
         if self._single:
             predicate, classifier, _, groundings = self._groups[0]
             return _classify(predicate, classifier, obs, groundings)
-        out = np.zeros((*obs.shape[:-1], len(self.atoms)), dtype=bool)
+        out = np.zeros((*batch_shape(obs), len(self.atoms)), dtype=bool)
         for predicate, classifier, indices, groundings in self._groups:
             out[..., indices] = _classify(predicate, classifier, obs, groundings)
         return out
 
 
+def batch_shape(obs: Any) -> tuple[int, ...]:
+    """The leading (batch) axes of an observation array, or of a mapping's first array."""
+    if isinstance(obs, Mapping):
+        obs = np.asarray(next(iter(obs.values())))
+    return obs.shape[:-1]
+
+
 def _classify(
-    predicate: str, classifier: Classifier, obs: np.ndarray, groundings: list[tuple[str, ...]]
+    predicate: str, classifier: Classifier, obs: Any, groundings: list[tuple[str, ...]]
 ) -> np.ndarray:
     if isinstance(classifier, Vectorized):
         try:
@@ -143,7 +154,7 @@ def _classify(
                 f"(objects {groundings[:3]}{'…' if len(groundings) > 3 else ''})"
             ) from exc
         values = np.asarray(values)
-        expected = (*obs.shape[:-1], len(groundings))
+        expected = (*batch_shape(obs), len(groundings))
         if values.shape != expected:
             raise ClassifierError(
                 f"vectorized classifier of predicate {predicate!r} returned shape {values.shape}, "
@@ -160,7 +171,7 @@ def _classify(
                 f"{format_atom((predicate, *objects))}: {exc}"
             ) from exc
         columns.append(_as_truth(predicate, np.asarray(value), objects))
-    return np.stack(columns, axis=-1) if columns else np.zeros((*obs.shape[:-1], 0), bool)
+    return np.stack(columns, axis=-1) if columns else np.zeros((*batch_shape(obs), 0), bool)
 
 
 def _as_truth(predicate: str, values: np.ndarray, objects: tuple[str, ...]) -> np.ndarray:

@@ -110,7 +110,8 @@ class PlanProgress:
 
     def initial(self, obs: Any) -> np.ndarray | int:
         """Progress right after ``reset``: the furthest subgoal reached, at least 0."""
-        return np.maximum(self.furthest(obs), 0) if np.ndim(obs) > 1 else max(self.furthest(obs), 0)
+        furthest = self.furthest(obs)
+        return max(furthest, 0) if isinstance(furthest, int) else np.maximum(furthest, 0)
 
     def advance(self, progress: np.ndarray | int, obs: Any) -> np.ndarray | int:
         """Progress after a step to ``obs``: never smaller than before."""

@@ -28,6 +28,7 @@ from gymnasium import spaces
 from planshape.errors import BadInputError, UnknownIdError
 from planshape.tasks.planar.geometry import GEOMETRY, PlanarGeometry, Rect
 from planshape.tasks.planar.model import PHYSICS, PlanarPhysics, planar_mjcf
+from planshape.tasks.planar.render import draw
 
 RewardVariant = Literal["sparse", "dense"]
 REWARD_VARIANTS: tuple[str, ...] = ("sparse", "dense")
@@ -50,12 +51,12 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         randomize_start: draw the start (end effector, and the box in push) from
             ``self.np_random`` on every reset instead of the paper's fixed start.
         randomize_goal: draw the goal from the task's goal region on every reset.
-        render_mode: only ``None`` (no rendering).
+        render_mode: ``None`` or ``"rgb_array"`` (a top-down picture, see ``render.py``).
         geometry: the task geometry (the paper's by default).
     """
 
     metadata: ClassVar[dict[str, Any]] = {
-        "render_modes": [],
+        "render_modes": ["rgb_array"],
         "render_fps": round(1.0 / PHYSICS.control_dt),
     }
 
@@ -80,15 +81,15 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
                 hint=f"the {self.task} environment implements 'sparse' and 'dense'; "
                 "'shaped' is applied by gymnasium.make on a registered planshape/ id",
             )
-        if render_mode is not None:
+        if render_mode not in (None, "rgb_array"):
             raise BadInputError(
-                f"{self.task}: render_mode={render_mode!r} is not supported; the planar "
-                "environments do not render (use render_mode=None)"
+                f"{self.task}: render_mode={render_mode!r} is not supported; use None or "
+                "'rgb_array' (a top-down picture drawn without OpenGL)"
             )
         self.reward_variant: RewardVariant = reward
         self.randomize_start = bool(randomize_start)
         self.randomize_goal = bool(randomize_goal)
-        self.render_mode = None
+        self.render_mode = render_mode
         self.geometry = geometry
         self.physics: PlanarPhysics = PHYSICS
 
@@ -204,6 +205,14 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
     def data(self) -> mujoco.MjData:
         """The MuJoCo data of the current state."""
         return self._data
+
+    def render(self) -> np.ndarray | None:
+        """A top-down RGB picture of the current state when ``render_mode="rgb_array"``."""
+        if self.render_mode != "rgb_array":
+            return None
+        q = self._data.qpos
+        box = (float(q[2]), float(q[3])) if self.has_box else None
+        return draw(self.geometry, (float(q[0]), float(q[1])), self._goal, self.walls, box)
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None

@@ -1,0 +1,5 @@
+(define (problem fetch-push-stages)
+  (:domain fetch-push)
+  (:objects gripper - gripper block - block)
+  (:init)
+  (:goal (at-goal block)))

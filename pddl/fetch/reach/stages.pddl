@@ -1,0 +1,5 @@
+(define (problem fetch-reach-stages)
+  (:domain fetch-reach)
+  (:objects gripper - gripper target - location)
+  (:init)
+  (:goal (gripper-at gripper target)))

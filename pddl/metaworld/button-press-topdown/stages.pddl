@@ -1,0 +1,5 @@
+(define (problem button-press-topdown-stages)
+  (:domain metaworld-button-press-topdown)
+  (:objects gripper - hand button - button)
+  (:init)
+  (:goal (pressed button)))

@@ -1,0 +1,5 @@
+(define (problem button-press-stages)
+  (:domain metaworld-button-press)
+  (:objects gripper - hand button - button)
+  (:init)
+  (:goal (pressed button)))

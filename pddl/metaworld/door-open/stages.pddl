@@ -1,0 +1,5 @@
+(define (problem door-open-stages)
+  (:domain metaworld-door-open)
+  (:objects gripper - hand handle - handle door - door)
+  (:init (handle-of handle door))
+  (:goal (open door)))

@@ -1,0 +1,5 @@
+(define (problem drawer-close-stages)
+  (:domain metaworld-drawer-close)
+  (:objects gripper - hand handle - handle drawer - drawer)
+  (:init (handle-of handle drawer))
+  (:goal (closed drawer)))

@@ -1,0 +1,5 @@
+(define (problem drawer-open-stages)
+  (:domain metaworld-drawer-open)
+  (:objects gripper - hand handle - handle drawer - drawer)
+  (:init (handle-of handle drawer))
+  (:goal (open drawer)))

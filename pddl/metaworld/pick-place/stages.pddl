@@ -1,0 +1,5 @@
+(define (problem pick-place-stages)
+  (:domain metaworld-pick-place)
+  (:objects gripper - hand puck - puck)
+  (:init)
+  (:goal (at-goal puck)))

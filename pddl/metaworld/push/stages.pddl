@@ -1,0 +1,5 @@
+(define (problem push-stages)
+  (:domain metaworld-push)
+  (:objects gripper - hand puck - puck)
+  (:init)
+  (:goal (at-goal puck)))

@@ -1,0 +1,5 @@
+(define (problem reach-stages)
+  (:domain metaworld-reach)
+  (:objects gripper - hand target - location)
+  (:init)
+  (:goal (hand-at gripper target)))

@@ -1,0 +1,5 @@
+(define (problem window-close-stages)
+  (:domain metaworld-window-close)
+  (:objects gripper - hand handle - handle window - window)
+  (:init (handle-of handle window))
+  (:goal (closed window)))

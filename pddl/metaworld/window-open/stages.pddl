@@ -1,0 +1,5 @@
+(define (problem window-open-stages)
+  (:domain metaworld-window-open)
+  (:objects gripper - hand handle - handle window - window)
+  (:init (handle-of handle window))
+  (:goal (open window)))

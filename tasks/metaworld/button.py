@@ -1,0 +1,118 @@
+"""button-press-topdown-v3 and button-press-v3: line the gripper up with the button, press it.
+
+``obs[4:7]`` is the button's face (its top for topdown, its front for the wall-mounted one);
+the goal is the depth it must be pressed to. Stages: ``(hand-above gripper button)`` →
+``(pressed button)`` (topdown), ``(hand-in-front gripper button)`` → ``(pressed button)``.
+Thresholds:
+
+* ``hand-above``: the hand is within ``ABOVE_XY`` = 4 cm of the button horizontally and not below
+  its top (the topdown expert's own alignment radius);
+* ``hand-in-front``: the hand is in front of the button (smaller y) and its x and z are within
+  ``FRONT_XZ`` = 3 cm of the button's plus ``FRONT_OFFSET`` = (0, 0, −7) cm (where the front
+  expert lines the hand up; it accepts 2 cm);
+* ``pressed``: the button's face is within ``TOPDOWN_DEPTH`` = 2.4 cm (height) or
+  ``FRONT_DEPTH`` = 2 cm (y) of the goal: MetaWorld's success tests.
+
+Example:
+    >>> import numpy as np
+    >>> from planshape.tasks.metaworld import observation as o
+    >>> obs = np.zeros(o.OBS_DIM); obs[o.HAND] = (0.0, 0.8, 0.35); obs[o.OBJECT] = (0.01, 0.8, 0.3)
+    >>> obs[o.GOAL] = (0.0, 0.8, 0.215)
+    >>> bool(hand_above(obs, "gripper", "button")), bool(pressed_down(obs, "button"))
+    (True, False)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from planshape.registration import AbstractModel
+from planshape.tasks.common import pddl_file
+from planshape.tasks.metaworld.geometry import DisplacementGeometry
+from planshape.tasks.metaworld.observation import distance, goal, hand, main_object
+
+ABOVE_XY = 0.04
+FRONT_XZ = 0.03
+FRONT_OFFSET = np.array([0.0, 0.0, -0.07])
+TOPDOWN_DEPTH = 0.024
+FRONT_DEPTH = 0.02
+
+
+def hand_above(obs: np.ndarray, _hand: str, _button: str) -> np.ndarray:
+    """``(hand-above ?h ?b)``: over the button (within ``ABOVE_XY``) and not below its top."""
+    over = distance(hand(obs)[..., :2], main_object(obs)[..., :2]) <= ABOVE_XY
+    return over & (hand(obs)[..., 2] >= main_object(obs)[..., 2])
+
+
+def hand_in_front(obs: np.ndarray, _hand: str, _button: str) -> np.ndarray:
+    """``(hand-in-front ?h ?b)``: lined up with the button (x and z within ``FRONT_XZ``) and in
+    front of it."""
+    offset = hand_to_front(obs)
+    lined_up = np.all(np.abs(offset[..., [0, 2]]) <= FRONT_XZ, axis=-1)
+    return lined_up & (offset[..., 1] <= 0.0)
+
+
+def pressed_down(obs: np.ndarray, _button: str) -> np.ndarray:
+    """topdown ``(pressed ?b)``: the button's top is within ``TOPDOWN_DEPTH`` of the goal's
+    height."""
+    return np.abs(button_height_to_goal(obs)[..., 0]) <= TOPDOWN_DEPTH
+
+
+def pressed_in(obs: np.ndarray, _button: str) -> np.ndarray:
+    """front ``(pressed ?b)``: the button's face is within ``FRONT_DEPTH`` of the goal's y."""
+    return np.abs(button_depth_to_goal(obs)[..., 0]) <= FRONT_DEPTH
+
+
+def hand_over_button(obs: np.ndarray) -> np.ndarray:
+    """Hand minus button, horizontally."""
+    return hand(obs)[..., :2] - main_object(obs)[..., :2]
+
+
+def hand_to_front(obs: np.ndarray) -> np.ndarray:
+    """Hand minus the point where the front expert lines the hand up."""
+    return hand(obs) - (main_object(obs) + FRONT_OFFSET)
+
+
+def button_height_to_goal(obs: np.ndarray) -> np.ndarray:
+    """The button's height minus the goal's (a 1-vector)."""
+    return main_object(obs)[..., 2:] - goal(obs)[..., 2:]
+
+
+def button_depth_to_goal(obs: np.ndarray) -> np.ndarray:
+    """The button face's y minus the goal's (a 1-vector)."""
+    return main_object(obs)[..., 1:2] - goal(obs)[..., 1:2]
+
+
+def topdown_stages() -> AbstractModel:
+    """button-press-topdown: move over the button, press it down."""
+    return AbstractModel(
+        domain=pddl_file("metaworld", "button-press-topdown", "domain.pddl"),
+        problem=pddl_file("metaworld", "button-press-topdown", "stages.pddl"),
+        classifiers={"hand-above": hand_above, "pressed": pressed_down},
+        geometry=DisplacementGeometry(
+            displacements={
+                "hand-over-button": hand_over_button,
+                "button-to-goal": button_height_to_goal,
+            },
+            targets={
+                "hand-above": ("hand-over-button", (0.0, 0.0)),
+                "pressed": ("button-to-goal", (0.0,)),
+            },
+        ),
+    )
+
+
+def front_stages() -> AbstractModel:
+    """button-press: line up in front of the button, push it in."""
+    return AbstractModel(
+        domain=pddl_file("metaworld", "button-press", "domain.pddl"),
+        problem=pddl_file("metaworld", "button-press", "stages.pddl"),
+        classifiers={"hand-in-front": hand_in_front, "pressed": pressed_in},
+        geometry=DisplacementGeometry(
+            displacements={"hand-to-front": hand_to_front, "button-to-goal": button_depth_to_goal},
+            targets={
+                "hand-in-front": ("hand-to-front", (0.0, 0.0, 0.0)),
+                "pressed": ("button-to-goal", (0.0,)),
+            },
+        ),
+    )

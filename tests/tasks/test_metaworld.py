@@ -1,0 +1,195 @@
+"""MetaWorld v3 tasks: API conformance for every reward variant, the scripted experts against the
+PDDL models (the proof that a model and its classifiers agree), seeding, the episode end, the
+subgoal geometry and the error for a model that misses a classifier."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+
+import gymnasium
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env as gymnasium_check_env
+from metaworld.policies import ENV_POLICY_MAP
+from stable_baselines3.common.env_checker import check_env as sb3_check_env
+
+import planshape  # noqa: F401  (registers the tasks)
+from planshape.errors import RegistrationError
+from planshape.registration import abstract_model, shape, task_ids, task_spec
+from planshape.tasks.metaworld import observation as layout
+
+TASKS = [t for t in task_ids() if t.startswith("planshape/MetaWorld-")]
+REWARDS = ["sparse", "dense", "shaped"]
+GAMMA = 0.99
+
+
+def make(task_id: str, reward: str = "sparse", **kwargs) -> gymnasium.Env:
+    if reward == "shaped":
+        kwargs.setdefault("gamma", GAMMA)
+    return gymnasium.make(task_id, reward=reward, **kwargs)
+
+
+def env_name(task_id: str) -> str:
+    return task_spec(task_id).kwargs["env_name"]
+
+
+def test_the_suite_has_at_least_eight_metaworld_tasks() -> None:
+    assert len(TASKS) >= 8, TASKS
+
+
+# ---- API conformance ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("reward", REWARDS)
+@pytest.mark.parametrize("task_id", TASKS, ids=str)
+def test_gymnasium_env_checker(task_id: str, reward: str) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # MetaWorld's object bounds are ±inf: a warning only
+        gymnasium_check_env(make(task_id, reward), skip_render_check=True)
+
+
+@pytest.mark.parametrize("reward", REWARDS)
+@pytest.mark.parametrize("task_id", TASKS, ids=str)
+def test_sb3_env_checker(task_id: str, reward: str) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sb3_check_env(make(task_id, reward))
+
+
+@pytest.mark.parametrize("task_id", TASKS, ids=str)
+def test_observation_layout(task_id: str) -> None:
+    """The 39 numbers are where :mod:`observation` says: checked against MetaWorld's simulator."""
+    env = make(task_id)
+    obs, info = env.reset(seed=1)
+    sim = env.unwrapped.sim
+    assert obs.shape == (layout.OBS_DIM,) and env.observation_space.contains(obs)
+    np.testing.assert_allclose(layout.hand(obs), sim.get_endeff_pos())
+    np.testing.assert_allclose(layout.main_object(obs), sim._get_pos_objects()[:3])
+    np.testing.assert_allclose(layout.goal(obs), sim._target_pos)
+    np.testing.assert_allclose(obs[layout.PREVIOUS], obs[:18])  # frame stack after reset
+    assert np.linalg.norm(layout.tcp(obs) - sim.tcp_center) < 0.01
+    assert info["success"] is False and math.isfinite(info["distance"])
+    # The reset observation is current: a step that does nothing moves nothing noticeably
+    # (MetaWorld's own reset observation showed window handles where the last episode left them).
+    after, *_ = env.step(np.zeros(4, dtype=np.float32))
+    assert np.linalg.norm(layout.main_object(after) - layout.main_object(obs)) < 0.005
+    env.reset(seed=2)
+    obs, _ = env.reset(seed=1)
+    np.testing.assert_allclose(layout.main_object(obs), layout.main_object(after), atol=0.005)
+
+
+# ---- the scripted expert against the model -----------------------------------------------------
+
+
+@pytest.mark.filterwarnings("ignore:Constant\\(s\\) may be too high")
+@pytest.mark.parametrize("task_id", TASKS, ids=str)
+def test_expert_reaches_success_and_the_end_of_the_plan_in_order(task_id: str) -> None:
+    """MetaWorld's scripted expert solves the task, and the shaping wrapper's progress walks the
+    plan's subgoals one after the other up to the last: the classifiers see the stages the
+    model names, in the model's order."""
+    env = make(task_id, "shaped", potential="plan-based")
+    final = env.get_wrapper_attr("progress").final
+    expert = ENV_POLICY_MAP[env_name(task_id)]()
+    obs, info = env.reset(seed=0)
+    progress, success_at = [info["progress"]], None
+    for t in range(1, task_spec(task_id).max_episode_steps + 1):
+        obs, _, terminated, truncated, info = env.step(expert.get_action(obs.copy()))
+        assert info["reward_original"] == float(info["success"])  # sparse underneath
+        progress.append(info["progress"])
+        if info["success"] and success_at is None:
+            success_at = t
+        if success_at is not None and progress[-1] == final:
+            break
+        assert not terminated and not truncated
+    assert success_at is not None, f"the expert did not succeed in {t} steps"
+    assert progress[-1] == final, f"progress reached {max(progress)} of {final}"
+    assert progress == sorted(progress)
+    assert sorted(set(progress)) == list(range(final + 1)), "a subgoal was skipped"
+
+
+# ---- seeding and episode end --------------------------------------------------------------------
+
+
+def rollout(env: gymnasium.Env, seed: int, steps: int = 20) -> tuple[np.ndarray, list[float]]:
+    obs, _ = env.reset(seed=seed)
+    env.action_space.seed(seed)
+    observations, rewards = [obs], []
+    for _ in range(steps):
+        obs, reward, *_ = env.step(env.action_space.sample())
+        observations.append(obs)
+        rewards.append(float(reward))
+    return np.stack(observations), rewards
+
+
+@pytest.mark.parametrize("task_id", TASKS, ids=str)
+def test_same_seed_same_trajectory(task_id: str) -> None:
+    first = rollout(make(task_id, "dense"), seed=7)
+    second = rollout(make(task_id, "dense"), seed=7)
+    np.testing.assert_array_equal(first[0], second[0])
+    assert first[1] == second[1]
+
+
+def test_the_seed_draws_the_goal_and_unseeded_resets_draw_new_ones() -> None:
+    env = make("planshape/MetaWorld-reach-v3")
+    goal_a = layout.goal(env.reset(seed=1)[0])
+    goal_b = layout.goal(env.reset(seed=2)[0])
+    goal_next = layout.goal(env.reset()[0])
+    assert not np.allclose(goal_a, goal_b) and not np.allclose(goal_b, goal_next)
+    np.testing.assert_array_equal(layout.goal(env.reset(seed=1)[0]), goal_a)
+
+
+def test_episode_truncates_at_the_limit_and_refuses_to_step_past_it() -> None:
+    env = make("planshape/MetaWorld-reach-v3", max_episode_steps=3, max_path_length=3)
+    env.reset(seed=0)
+    ends = [env.step(env.action_space.sample())[2:4] for _ in range(3)]
+    assert ends == [(False, False), (False, False), (False, True)]
+    with pytest.raises(gymnasium.error.ResetNeeded, match="max_path_length"):
+        env.unwrapped.step(env.action_space.sample())
+    env.reset(seed=0)
+    env.step(env.action_space.sample())
+
+
+def test_dense_reward_is_metaworlds_and_sparse_is_success() -> None:
+    dense, sparse = (
+        make("planshape/MetaWorld-push-v3", "dense"),
+        make("planshape/MetaWorld-push-v3"),
+    )
+    dense.reset(seed=3)
+    sparse.reset(seed=3)
+    action = np.zeros(4, dtype=np.float32)
+    _, r_dense, *_, info = dense.step(action)
+    _, r_sparse, *_, info_sparse = sparse.step(action)
+    assert 0.0 < r_dense <= 10.0 and r_sparse == float(info_sparse["success"]) == 0.0
+    assert info["distance"] == pytest.approx(info["obj_to_target"])
+
+
+# ---- models ------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("task_id", TASKS, ids=str)
+def test_geometry_locates_every_subgoal_and_drives_distance_potentials(task_id: str) -> None:
+    env = make(task_id, "shaped", potential="distance-varying")
+    geometry = env.get_wrapper_attr("geometry")
+    obs, info = env.reset(seed=0)
+    positions = geometry.positions(obs)
+    for subgoal in env.get_wrapper_attr("progress").subgoals[1:]:
+        targets = geometry.locate(subgoal)
+        assert targets, f"no entity located for {sorted(subgoal)}"
+        for entity, target in targets.items():
+            assert positions[entity].shape == target.shape
+    assert info["potential"] < 0
+    *_, info = env.step(env.action_space.sample())
+    assert math.isfinite(info["shaping"])
+
+
+@pytest.mark.parametrize("task_id", TASKS, ids=str)
+def test_a_model_missing_a_classifier_names_the_predicate(task_id: str) -> None:
+    model = abstract_model(task_spec(task_id))
+    dropped = sorted(model.classifiers)[0]
+    broken = dataclasses.replace(
+        model, classifiers={k: v for k, v in model.classifiers.items() if k != dropped}
+    )
+    with pytest.raises(RegistrationError, match=rf"\['{dropped}'\].*no classifier"):
+        shape(make(task_id), broken, "plan-based", gamma=GAMMA)
