@@ -28,8 +28,8 @@ class BadInputError(PlanshapeError):
     """The user's input (a file, an option, an id) is wrong; CLI exit status 2."""
 
 
-class PDDLError(BadInputError):
-    """A PDDL file is malformed or names something its domain does not declare."""
+class FileError(BadInputError):
+    """Bad input found in a file; the message starts with ``file:line:`` where they are known."""
 
     def __init__(self, message: str, file: str | Path | None = None, line: int | None = None):
         self.file = None if file is None else Path(file)
@@ -38,6 +38,14 @@ class PDDLError(BadInputError):
         if file is not None:
             where = f"{file}:{line}: " if line is not None else f"{file}: "
         super().__init__(f"{where}{message}")
+
+
+class PDDLError(FileError):
+    """A PDDL file is malformed or names something its domain does not declare."""
+
+
+class ResultsError(FileError):
+    """A stored result file or row is malformed (the message names the file and line)."""
 
 
 class PlannerError(PlanshapeError):

@@ -1,0 +1,160 @@
+"""``planshape bench`` and ``planshape leaderboard``.
+
+``planshape bench`` runs the benchmark suite (``benchmark/suite``, a pytest suite with one item
+per training run) over a process pool, resuming from the results already stored in ``--out``,
+then renders the leaderboard there. ``planshape leaderboard`` renders it again from the stored
+rows without training.
+
+Example:
+    >>> main(["bench", "--profile", "smoke", "--out", "/tmp/planshape-smoke"])  # doctest: +SKIP
+    0
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shlex
+import sys
+from pathlib import Path
+
+from planshape.cli import Handler, subcommand
+from planshape.errors import BadInputError
+from planshape.profiles import PROFILES, get_profile
+
+SUITE = Path(__file__).resolve().parent / "suite"
+
+
+def pytest_arguments(args: argparse.Namespace) -> list[str]:
+    """The pytest command line that runs the selected part of the suite."""
+    arguments = [
+        str(SUITE),
+        "--import-mode=importlib",
+        "-p",
+        "no:cacheprovider",
+        "-o",
+        "addopts=",
+        "-o",
+        "console_output_style=classic",
+        "-q",
+        "--profile",
+        args.profile,
+        "--out",
+        str(args.out),
+        "--executor",
+        args.executor,
+    ]
+    for potential in args.potential:
+        arguments += ["--potential", potential]
+    for option in ("tasks", "seeds", "address"):
+        value = getattr(args, option)
+        if value:
+            arguments += [f"--{option}", value]
+    if args.k:
+        arguments += ["-k", args.k]
+    if args.no_render:
+        arguments.append("--no-render")
+    workers = args.workers or os.cpu_count() or 1
+    if workers > 1:
+        arguments += ["-p", "xdist", "-n", str(workers)]
+    return arguments
+
+
+@subcommand("bench", "run the benchmark (train, evaluate, store) and render the leaderboard")
+def _bench(parser: argparse.ArgumentParser) -> Handler:
+    parser.description = (
+        "Train every run of a profile that is not yet in the results store, evaluate it on the "
+        "task's own metrics and render the leaderboard. Interrupted runs are redone; finished "
+        "ones never are. Profiles: "
+        + "; ".join(f"{p.name}: {p.description}" for p in PROFILES.values())
+    )
+    parser.add_argument("--profile", default="default", help="profile (default: %(default)s)")
+    parser.add_argument(
+        "--out", type=Path, default=Path("leaderboard"), help="results and leaderboard folder"
+    )
+    parser.add_argument(
+        "--potential",
+        action="append",
+        default=[],
+        metavar="REF",
+        help="a potential to rank beside the references: a registered id or module:attr; it "
+        "is checked for invariance first, then trained on every model of every task",
+    )
+    parser.add_argument("--tasks", help="comma-separated tasks to keep, e.g. reach,push")
+    parser.add_argument("--seeds", help="comma-separated seeds to keep, e.g. 0,1")
+    parser.add_argument(
+        "--executor", choices=("local", "ray"), default="local", help="local process pool or Ray"
+    )
+    parser.add_argument("--address", help="Ray cluster address, with --executor ray")
+    parser.add_argument(
+        "--workers", type=int, default=0, help="parallel runs (default: one per CPU core)"
+    )
+    parser.add_argument("-k", help="pytest -k expression to select runs, e.g. 'PPO and grid'")
+    parser.add_argument("--no-render", action="store_true", help="do not render the leaderboard")
+    return run_bench
+
+
+def run_bench(args: argparse.Namespace) -> int:
+    import pytest
+
+    get_profile(args.profile)  # an unknown profile is bad input before anything starts
+    if args.workers < 0:
+        raise BadInputError(f"--workers must be positive, not {args.workers}")
+    if args.executor != "ray" and args.address:
+        raise BadInputError("--address applies only with --executor ray")
+    for reference in args.potential:
+        _check_submission(reference)
+    os.environ["PLANSHAPE_BENCH_COMMAND"] = "planshape bench " + shlex.join(sys.argv[2:])
+    status = pytest.main(pytest_arguments(args))
+    if status == pytest.ExitCode.NO_TESTS_COLLECTED:
+        raise BadInputError("the selection matches no run; check --tasks, --seeds and -k")
+    if status == pytest.ExitCode.USAGE_ERROR:
+        return 2
+    return 0 if status == pytest.ExitCode.OK else 1
+
+
+def _check_submission(reference: str) -> None:
+    """Make the potential (import errors are bad input) and print its invariance verdict."""
+    from planshape.invariance import check_potential
+    from planshape.potentials import make_potential
+
+    make_potential(reference)
+    report = check_potential(reference)
+    verdict = "preserves" if report.preserved else "DOES NOT preserve"
+    print(f"invariance: {reference} {verdict} the optimal policy on every toy MDP", flush=True)
+
+
+@subcommand("leaderboard", "render the leaderboard again from the stored results")
+def _leaderboard(parser: argparse.ArgumentParser) -> Handler:
+    parser.add_argument(
+        "--out", type=Path, default=Path("leaderboard"), help="results and leaderboard folder"
+    )
+    parser.add_argument("--profile", default=None, help="profile named in the header")
+    parser.add_argument("--json", action="store_true", help="print the summary as JSON")
+    return run_leaderboard
+
+
+def run_leaderboard(args: argparse.Namespace) -> int:
+    from planshape.leaderboard import render_leaderboard, summary_table
+    from planshape.scoring import json_ready, load_rows, summarize
+
+    rows = load_rows(args.out)
+    if not rows:
+        raise BadInputError(f"{args.out}: no stored results (runs/*.jsonl); run planshape bench")
+    profiles = sorted({r["profile"] for r in rows})
+    profile = get_profile(args.profile or profiles[-1])
+    header = {
+        "profile": profile.name,
+        "description": profile.description,
+        "command": f"planshape bench --profile {profile.name}",
+        "caveats": list(profile.caveats),
+        "eval_every": profile.eval_every,
+        "eval_episodes": profile.eval_episodes,
+    }
+    render_leaderboard(rows, args.out, header)
+    if args.json:
+        print(json.dumps(json_ready(summarize(rows)), indent=2, sort_keys=True, allow_nan=False))
+    else:
+        print(summary_table(rows))
+    return 0

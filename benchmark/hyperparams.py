@@ -1,0 +1,95 @@
+"""Hyperparameters per task family and algorithm, in one documented place (rl-zoo style).
+
+Every benchmark run of a (task, algorithm) pair uses exactly these settings, whatever the
+reward entry, so entries are compared under equal conditions. γ is the learner's discount and
+is also the shaping γ of every shaped entry (correctness rule 1).
+
+* PPO (planar tasks): 8 environments × 128 steps per update, 10 epochs of minibatch 256,
+  a [64, 64] MLP, learning rate 3e-4, GAE λ 0.95. Modest, standard settings; the same for
+  every entry.
+* SAC (planar tasks), "tuned": a [64, 64] MLP (the defaults' [256, 256] is slow on a CPU and
+  no better here), learning rate 1e-3, batch 256, 1000 random steps first, one gradient step
+  per environment step, automatic entropy tuning. The source paper ran SAC with untuned
+  library defaults; ``SAC-default`` reproduces that (stable-baselines3's defaults but γ).
+* MetaWorld and gymnasium-robotics: larger networks and longer episodes (see the table).
+
+Example:
+    >>> settings = hyperparameters("planshape/Reach-v0", "PPO")
+    >>> settings["gamma"], settings["n_envs"]
+    (0.99, 8)
+"""
+
+from __future__ import annotations
+
+import copy
+from typing import Any
+
+from planshape.errors import UnknownIdError
+
+GAMMA = 0.99
+
+PPO_PLANAR: dict[str, Any] = {
+    "n_envs": 8,
+    "n_steps": 128,
+    "batch_size": 256,
+    "n_epochs": 10,
+    "learning_rate": 3e-4,
+    "gae_lambda": 0.95,
+    "gamma": GAMMA,
+    "ent_coef": 0.0,
+    "policy_kwargs": {"net_arch": [64, 64]},
+}
+SAC_PLANAR: dict[str, Any] = {
+    "n_envs": 1,
+    "learning_rate": 1e-3,
+    "batch_size": 256,
+    "buffer_size": 100_000,
+    "learning_starts": 1000,
+    "train_freq": 1,
+    "gradient_steps": 1,
+    "gamma": GAMMA,
+    "policy_kwargs": {"net_arch": [64, 64]},
+}
+SAC_DEFAULT: dict[str, Any] = {"n_envs": 1, "gamma": GAMMA}
+PPO_ROBOTICS: dict[str, Any] = {
+    **PPO_PLANAR,
+    "n_steps": 512,
+    "batch_size": 512,
+    "policy_kwargs": {"net_arch": [256, 256]},
+}
+SAC_ROBOTICS: dict[str, Any] = {
+    **SAC_PLANAR,
+    "learning_rate": 3e-4,
+    "learning_starts": 5000,
+    "policy_kwargs": {"net_arch": [256, 256]},
+}
+
+#: (task family, algorithm) -> settings; the family is the part of the id before the first '-'
+#: or '_' after the namespace ("Reach", "Push", "MazeReach", "MetaWorld", "PointMaze", "Fetch…").
+TABLE: dict[tuple[str, str], dict[str, Any]] = {
+    **{(f, "PPO"): PPO_PLANAR for f in ("Reach", "Push", "MazeReach")},
+    **{(f, "SAC"): SAC_PLANAR for f in ("Reach", "Push", "MazeReach")},
+    **{(f, "SAC-default"): SAC_DEFAULT for f in ("Reach", "Push", "MazeReach")},
+    **{(f, "PPO"): PPO_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
+    **{(f, "SAC"): SAC_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
+}
+ALGORITHMS = ("PPO", "SAC", "SAC-default")
+
+
+def family(task_id: str) -> str:
+    """The family of a task id: ``"planshape/MetaWorld-reach-v3"`` -> ``"MetaWorld"``."""
+    name = task_id.split("/", 1)[-1]
+    return name.replace("_", "-").split("-", 1)[0]
+
+
+def hyperparameters(task_id: str, algo: str) -> dict[str, Any]:
+    """A fresh copy of the settings of ``algo`` on ``task_id``."""
+    if algo not in ALGORITHMS:
+        raise UnknownIdError("algorithm", algo, ALGORITHMS)
+    key = (family(task_id), algo)
+    if key not in TABLE:
+        known = sorted({f for f, a in TABLE if a == algo})
+        raise UnknownIdError(
+            "task family", key[0], known, hint=f"no {algo} hyperparameters for {task_id}"
+        )
+    return copy.deepcopy(TABLE[key])

@@ -1,0 +1,224 @@
+"""One benchmark run: train a stable-baselines3 learner on one reward entry of one task for a
+fixed budget, evaluating it on the task's own metrics along the way.
+
+Evaluation never looks at the training reward: every evaluation point runs ``eval_episodes``
+episodes of the deterministic policy on the task with its own sparse reward and records the
+success rate (the task's success flag at the episode's end), the final distance to the goal
+(the source paper's metric) and the return under the sparse reward (correctness rule 5).
+
+A run is a pure function of its :class:`RunSpec` (rule 6): the learner, the environments and the
+evaluation episodes are seeded from it, torch uses one thread, and nothing else is random.
+Floating-point results are identical on the same machine and library versions; across CPUs
+or library versions they may differ in the last digits.
+
+Example:
+    >>> from planshape.profiles import RunKey
+    >>> key = RunKey("planshape/Reach-v0", "sparse", "PPO", 0, 2048)
+    >>> spec = RunSpec.create(key, "smoke", eval_every=1024, eval_episodes=2)
+    >>> len(spec.run_id)
+    16
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import subprocess
+import time
+from dataclasses import asdict, dataclass, field
+from functools import cache
+from importlib import metadata
+from pathlib import Path
+from typing import Any
+
+import gymnasium
+import numpy as np
+
+from planshape.hyperparams import hyperparameters
+from planshape.profiles import RunKey
+
+PACKAGES = ("planshape", "stable-baselines3", "torch", "gymnasium", "mujoco", "numpy")
+EVAL_SEED_OFFSET = 10_000
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """Everything that determines a run's numbers."""
+
+    key: RunKey
+    profile: str
+    eval_every: int
+    eval_episodes: int
+    hyperparameters: dict[str, Any] = field(hash=False)
+    invariance: str = "not-checked"
+
+    @classmethod
+    def create(
+        cls,
+        key: RunKey,
+        profile: str,
+        eval_every: int,
+        eval_episodes: int,
+        invariance: str = "not-checked",
+    ) -> RunSpec:
+        return cls(
+            key, profile, eval_every, eval_episodes, hyperparameters(key.task, key.algo), invariance
+        )
+
+    @property
+    def run_id(self) -> str:
+        """A content hash of what determines the numbers (not of the profile's name or the code
+        version, which are recorded as provenance), so stored runs are found again."""
+        identity = {
+            **asdict(self.key),
+            "eval_every": self.eval_every,
+            "eval_episodes": self.eval_episodes,
+            "hyperparameters": self.hyperparameters,
+        }
+        text = json.dumps(identity, sort_keys=True)
+        return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+@cache
+def code_version() -> str:
+    """``git describe`` of the checkout the code runs from, else the package version."""
+    root = Path(__file__).resolve().parent.parent
+    try:
+        out = subprocess.run(
+            ["git", "describe", "--always", "--dirty", "--tags"],
+            cwd=root,
+            capture_output=True,
+            text=True,
+            timeout=10,
+            check=True,
+        )
+        return out.stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return f"planshape {package_versions().get('planshape', '?')}"
+
+
+@cache
+def package_versions() -> dict[str, str]:
+    versions = {}
+    for name in PACKAGES:
+        try:
+            versions[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            versions[name] = "missing"
+    return versions
+
+
+def make_training_env(key: RunKey, n_envs: int, gamma: float, seed: int):
+    """The VecEnv a learner trains on: each environment wrapped in its own shaping, inside the
+    VecEnv, shaped with the learner's γ."""
+    from stable_baselines3.common.env_util import make_vec_env
+
+    env_kwargs: dict[str, Any] = {"reward": key.reward, "render_mode": None}
+    if key.reward == "shaped":
+        env_kwargs.update(potential=key.potential, model=key.model, gamma=gamma)
+    return make_vec_env(key.task, n_envs=n_envs, seed=seed, env_kwargs=env_kwargs)
+
+
+def evaluate(model: Any, env: gymnasium.Env, episodes: int, seed: int) -> dict[str, float]:
+    """The deterministic policy on the task's own sparse reward: success rate at the end of
+    the episode, mean final distance, mean undiscounted sparse return."""
+    successes, distances, returns = [], [], []
+    for episode in range(episodes):
+        obs, info = env.reset(seed=seed + episode)
+        total, done = 0.0, False
+        while not done:
+            action, _ = model.predict(obs, deterministic=True)
+            obs, reward, terminated, truncated, info = env.step(action)
+            total += float(reward)
+            done = terminated or truncated
+        successes.append(float(bool(info.get("success", False))))
+        distances.append(float(info.get("distance", math.nan)))
+        returns.append(total)
+    return {
+        "success_rate": float(np.mean(successes)),
+        "final_distance": float(np.mean(distances)),
+        "sparse_return": float(np.mean(returns)),
+    }
+
+
+ALGORITHM_CLASSES = {"PPO": "PPO", "SAC": "SAC", "SAC-default": "SAC"}
+
+
+def execute(spec: RunSpec) -> list[dict[str, Any]]:
+    """Train and evaluate one run; return its tidy rows (one per evaluation point)."""
+    import stable_baselines3
+    import torch
+    from stable_baselines3.common.callbacks import BaseCallback
+
+    from planshape.training import make_algorithm
+
+    torch.set_num_threads(1)
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+    key = spec.key
+    settings = dict(spec.hyperparameters)
+    n_envs = settings.pop("n_envs")
+    gamma = settings["gamma"]
+    started = time.perf_counter()
+    venv = make_training_env(key, n_envs, gamma, key.seed)
+    eval_env = gymnasium.make(key.task)
+    algorithm = getattr(stable_baselines3, ALGORITHM_CLASSES[key.algo])
+    model = make_algorithm(algorithm, venv, seed=key.seed, device="cpu", verbose=0, **settings)
+
+    points: list[tuple[int, dict[str, float]]] = []
+    eval_seconds = [0.0]
+
+    def record() -> None:
+        t0 = time.perf_counter()
+        points.append(
+            (
+                int(model.num_timesteps),
+                evaluate(model, eval_env, spec.eval_episodes, EVAL_SEED_OFFSET),
+            )
+        )
+        eval_seconds[0] += time.perf_counter() - t0
+
+    class Evaluation(BaseCallback):
+        def __init__(self) -> None:
+            super().__init__()
+            self.next_at = spec.eval_every
+
+        def _on_step(self) -> bool:
+            if self.num_timesteps >= self.next_at and self.num_timesteps < key.budget:
+                record()
+                while self.next_at <= self.num_timesteps:
+                    self.next_at += spec.eval_every
+            return True
+
+    record()  # the untrained policy, at step 0
+    model.learn(key.budget, callback=Evaluation())
+    record()
+    wall = time.perf_counter() - started
+    train_seconds = max(wall - eval_seconds[0], 1e-9)
+    venv.close()
+    eval_env.close()
+    provenance = {
+        "run_id": spec.run_id,
+        "task": key.task,
+        "entry": key.entry,
+        "potential": key.potential,
+        "model": key.model,
+        "algo": key.algo,
+        "seed": key.seed,
+        "budget": key.budget,
+        "profile": spec.profile,
+        "eval_episodes": spec.eval_episodes,
+        "invariance": spec.invariance,
+        "wall_time_s": round(wall, 3),
+        "steps_per_s": round(model.num_timesteps / train_seconds, 1),
+        "code_version": code_version(),
+        "packages": package_versions(),
+        "hyperparameters": spec.hyperparameters,
+        "gamma": gamma,
+    }
+    last = len(points) - 1
+    return [
+        {**provenance, "step": step, "final": i == last, **metrics}
+        for i, (step, metrics) in enumerate(points)
+    ]

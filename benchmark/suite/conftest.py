@@ -1,0 +1,109 @@
+"""The benchmark suite as a pytest plugin: one test item per training run.
+
+Items are parametrized over task × reward entry × algorithm × seed from a profile, so the usual
+pytest selection works (``-k "Reach and plan-based"``, ``-m PPO``). Each item looks its run up
+in the results store, trains and evaluates it if it is missing, and stores its rows; a run that
+crashes fails its item and the others go on. At the end the leaderboard is rendered from every
+stored row and a summary table is printed.
+
+Options: ``--profile``, ``--out``, ``--potential`` (repeatable: a submission), ``--tasks``,
+``--seeds``, ``--executor`` (``local`` or ``ray``) and ``--address`` (a Ray cluster).
+Run it through ``planshape bench`` (which adds a process pool) or directly with
+``pytest benchmark/suite --profile smoke``.
+"""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+
+from planshape.suite.session import BenchSession
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    group = parser.getgroup("planshape", "planshape benchmark")
+    group.addoption("--profile", default="default", help="benchmark profile (default: default)")
+    group.addoption("--out", default="leaderboard", help="results and leaderboard folder")
+    group.addoption(
+        "--potential",
+        action="append",
+        default=[],
+        help="extra potential to rank (id or module:attr); repeatable",
+    )
+    group.addoption("--tasks", default=None, help="comma-separated task ids or names to keep")
+    group.addoption("--seeds", default=None, help="comma-separated seeds to keep")
+    group.addoption(
+        "--executor", default="local", choices=("local", "ray"), help="where runs execute"
+    )
+    group.addoption("--address", default=None, help="Ray cluster address (with --executor ray)")
+    group.addoption("--no-render", action="store_true", help="do not render the leaderboard")
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    session = BenchSession.from_options(config)
+    config.stash[BenchSession.KEY] = session
+    for marker in sorted(session.markers()):
+        config.addinivalue_line("markers", f"{marker}: planshape benchmark selection")
+    if not hasattr(config, "workerinput"):  # the controller, not an xdist worker
+        config.pluginmanager.register(ProgressLines(config), "planshape-progress")
+
+
+def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
+    if "run_key" in metafunc.fixturenames:
+        session: BenchSession = metafunc.config.stash[BenchSession.KEY]
+        keys = session.keys()
+        params = [
+            pytest.param(k, marks=[getattr(pytest.mark, m) for m in session.marks(k)]) for k in keys
+        ]
+        metafunc.parametrize("run_key", params, ids=[session.item_id(k) for k in keys])
+
+
+@pytest.fixture(scope="session")
+def bench(request: pytest.FixtureRequest) -> BenchSession:
+    return request.config.stash[BenchSession.KEY]
+
+
+class ProgressLines:
+    """After each run: how many are done, the time spent and an estimate of the time left."""
+
+    def __init__(self, config: pytest.Config):
+        self.config = config
+        self.started = time.monotonic()
+        self.total = 0
+        self.done = 0
+
+    def pytest_sessionstart(self, session: pytest.Session) -> None:
+        self.config.stash[BenchSession.KEY].prepare()
+
+    @pytest.hookimpl(trylast=True)
+    def pytest_collection_modifyitems(self, items: list[pytest.Item]) -> None:
+        self.total = len(items)
+
+    def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
+        finished = report.when == "call" or (report.when == "setup" and not report.passed)
+        if not finished:
+            return
+        self.done += 1
+        elapsed = time.monotonic() - self.started
+        left = elapsed / self.done * max(self.total - self.done, 0)
+        name = report.nodeid.split("[", 1)[-1].rstrip("]")
+        outcome = "done" if report.passed else report.outcome
+        reporter = self.config.pluginmanager.get_plugin("terminalreporter")
+        if reporter is not None:
+            reporter.write_line(
+                f"[{self.done}/{self.total}] {outcome:7s} {name}  "
+                f"elapsed {_clock(elapsed)}, about {_clock(left)} left"
+            )
+
+    def pytest_terminal_summary(self, terminalreporter) -> None:
+        text = self.config.stash[BenchSession.KEY].finish()
+        if text:
+            terminalreporter.write_sep("=", "planshape leaderboard")
+            terminalreporter.write_line(text)
+
+
+def _clock(seconds: float) -> str:
+    minutes, secs = divmod(int(seconds), 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours}h{minutes:02d}m" if hours else f"{minutes}m{secs:02d}s"
