@@ -98,7 +98,12 @@ def _bench(parser: argparse.ArgumentParser) -> Handler:
 def run_bench(args: argparse.Namespace) -> int:
     import pytest
 
-    get_profile(args.profile)  # an unknown profile is bad input before anything starts
+    from planshape.suite.session import parse_seeds, resolve_tasks
+
+    # bad input is reported before anything starts
+    get_profile(args.profile)
+    resolve_tasks(args.tasks)
+    parse_seeds(args.seeds)
     if args.workers < 0:
         raise BadInputError(f"--workers must be positive, not {args.workers}")
     if args.executor != "ray" and args.address:

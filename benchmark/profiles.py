@@ -190,14 +190,14 @@ SMOKE = Profile(
 
 # Multiples of PPO's rollout (8 environments × 128 steps), so PPO trains exactly the budget.
 _PLANAR_BUDGETS = {
-    "planshape/Reach-v0": 30 * 1024,
-    "planshape/Push-v0": 60 * 1024,
-    "planshape/MazeReach-v0": 60 * 1024,
+    "planshape/Reach-v0": 40 * 1024,
+    "planshape/Push-v0": 80 * 1024,
+    "planshape/MazeReach-v0": 80 * 1024,
 }
 _SAC_BUDGETS = {
-    "planshape/Reach-v0": 8_000,
-    "planshape/Push-v0": 12_000,
-    "planshape/MazeReach-v0": 12_000,
+    "planshape/Reach-v0": 10_000,
+    "planshape/Push-v0": 15_000,
+    "planshape/MazeReach-v0": 15_000,
 }
 
 DEFAULT = Profile(

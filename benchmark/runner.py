@@ -83,20 +83,22 @@ class RunSpec:
 
 @cache
 def code_version() -> str:
-    """``git describe`` of the checkout the code runs from, else the package version."""
-    root = Path(__file__).resolve().parent.parent
-    try:
-        out = subprocess.run(
-            ["git", "describe", "--always", "--dirty", "--tags"],
-            cwd=root,
-            capture_output=True,
-            text=True,
-            timeout=10,
-            check=True,
-        )
+    """``git describe`` of the checkout the benchmark runs from (the working directory, or the
+    source tree of an editable install), else the installed package's version."""
+    for folder in (Path.cwd(), Path(__file__).resolve().parent.parent):
+        try:
+            out = subprocess.run(
+                ["git", "describe", "--always", "--dirty", "--tags"],
+                cwd=folder,
+                capture_output=True,
+                text=True,
+                timeout=10,
+                check=True,
+            )
+        except (OSError, subprocess.SubprocessError):
+            continue
         return out.stdout.strip()
-    except (OSError, subprocess.SubprocessError):
-        return f"planshape {package_versions().get('planshape', '?')}"
+    return f"planshape {package_versions().get('planshape', '?')}"
 
 
 @cache

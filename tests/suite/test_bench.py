@@ -1,0 +1,123 @@
+"""The benchmark end to end: the smoke profile with a submitted potential, resuming, the
+leaderboard, determinism and the Ray executor."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from planshape.cli import main
+from planshape.profiles import RunKey
+from planshape.runner import RunSpec, execute
+from planshape.scoring import load_rows
+from planshape.store import ResultStore
+
+SUBMISSION = "tests.submission.example:ProgressAndDistance"
+
+
+@pytest.fixture(scope="module")
+def smoke_out(tmp_path_factory):
+    """One real smoke-profile benchmark with the README's example submission."""
+    out = tmp_path_factory.mktemp("bench")
+    status = main(
+        [
+            "bench",
+            "--profile",
+            "smoke",
+            "--out",
+            str(out),
+            "--workers",
+            "1",
+            "--potential",
+            SUBMISSION,
+        ]
+    )
+    assert status == 0
+    return out
+
+
+def test_smoke_profile_with_a_submission_writes_the_leaderboard(smoke_out):
+    rows = load_rows(smoke_out)
+    entries = {r["entry"] for r in rows}
+    # the profile's three entries, and the submission on every model of the task
+    assert {"sparse", "dense", "plan-based/multi"} <= entries
+    assert {f"{SUBMISSION}/{m}" for m in ("single", "multi", "grid")} <= entries
+    for name in ("LEADERBOARD.md", "index.html", "summary.json"):
+        assert (smoke_out / name).is_file()
+    board = (smoke_out / "LEADERBOARD.md").read_text()
+    assert SUBMISSION in board and "smoke" in board
+    verdicts = {r["entry"]: r["invariance"] for r in rows if r["potential"]}
+    assert set(verdicts.values()) == {"preserved"}
+    # scores come from the task's own metrics at every evaluation point
+    assert all(0.0 <= r["success_rate"] <= 1.0 and r["final_distance"] >= 0 for r in rows)
+
+
+def test_resume_reruns_nothing_that_finished(smoke_out):
+    before = sorted(p.name for p in (smoke_out / "runs").glob("*.jsonl"))
+    stamp = {p.name: p.stat().st_mtime_ns for p in (smoke_out / "runs").glob("*.jsonl")}
+    (smoke_out / "runs" / ".deadbeef.killed.tmp").write_text('{"half": ')  # a killed write
+    assert (
+        main(
+            [
+                "bench",
+                "--profile",
+                "smoke",
+                "--out",
+                str(smoke_out),
+                "--workers",
+                "1",
+                "--potential",
+                SUBMISSION,
+            ]
+        )
+        == 0
+    )
+    after = sorted(p.name for p in (smoke_out / "runs").glob("*.jsonl"))
+    assert after == before
+    assert all(p.stat().st_mtime_ns == stamp[p.name] for p in (smoke_out / "runs").glob("*.jsonl"))
+    assert not list((smoke_out / "runs").glob("*.tmp"))
+
+
+def test_leaderboard_command_renders_again(smoke_out, capsys):
+    assert main(["leaderboard", "--out", str(smoke_out), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert any(row["entry"] == "dense" for row in summary)
+
+
+def test_bad_input_exits_2(tmp_path, capsys):
+    assert main(["bench", "--profile", "nope", "--out", str(tmp_path)]) == 2
+    assert "unknown profile 'nope'" in capsys.readouterr().err
+    assert main(["bench", "--profile", "smoke", "--tasks", "reech", "--out", str(tmp_path)]) == 2
+    assert main(["bench", "--potential", "no_such_module:X", "--out", str(tmp_path)]) == 2
+    assert main(["leaderboard", "--out", str(tmp_path / "empty")]) == 2
+
+
+TINY = RunKey("planshape/Reach-v0", "plan-based/grid", "PPO", 3, 1024)
+
+
+def test_same_spec_same_numbers():
+    spec = RunSpec.create(TINY, "test", eval_every=512, eval_episodes=2)
+    first, second = execute(spec), execute(spec)
+    keep = ("step", "success_rate", "final_distance", "sparse_return")
+    assert [{k: r[k] for k in keep} for r in first] == [{k: r[k] for k in keep} for r in second]
+
+
+def test_ray_executor_gives_the_local_numbers(tmp_path):
+    import ray
+
+    from planshape.suite.session import _execute_on_ray
+
+    spec = RunSpec.create(TINY, "test", eval_every=512, eval_episodes=2)
+    ray.init(num_cpus=1, include_dashboard=False, log_to_driver=False)
+    try:
+        remote_rows = _execute_on_ray(spec, None)
+    finally:
+        ray.shutdown()
+    local_rows = execute(spec)
+    keep = ("step", "success_rate", "final_distance", "sparse_return", "run_id")
+    assert [{k: r[k] for k in keep} for r in remote_rows] == [
+        {k: r[k] for k in keep} for r in local_rows
+    ]
+    ResultStore(tmp_path).write(spec.run_id, remote_rows)
+    assert ResultStore(tmp_path).has(spec.run_id)
