@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import importlib
 import math
+import os
+import sys
 from abc import ABC, abstractmethod
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -169,6 +171,7 @@ def load_reference(reference: str) -> Any:
     module_name, _, attr = reference.partition(":")
     if not module_name or not attr:
         raise BadInputError(f"reference {reference!r} must look like 'module:attr'")
+    _current_folder_on_path()
     try:
         module = importlib.import_module(module_name)
     except ModuleNotFoundError as exc:
@@ -183,6 +186,14 @@ def load_reference(reference: str) -> Any:
     except AttributeError as exc:
         raise BadInputError(f"module {module_name!r} has no attribute {attr!r}") from exc
     return target
+
+
+def _current_folder_on_path() -> None:
+    """Let ``module:attr`` name a module under the current folder, as ``python -m`` would: the
+    ``planshape`` console script does not put the current folder on ``sys.path``."""
+    here = os.getcwd()
+    if "" not in sys.path and here not in sys.path:
+        sys.path.insert(0, here)
 
 
 def make_potential(reference: str | Potential | type[Potential], **kwargs: Any) -> Potential:
@@ -241,4 +252,3 @@ def _instantiate(target: Any, kwargs: dict[str, Any], label: str) -> Potential:
     if not isinstance(potential, Potential):
         raise BadInputError(f"{label} returned {type(potential).__name__}, not a Potential")
     return potential
-

@@ -289,7 +289,12 @@ class Grid:
         return self.anchor[1] + math.floor((hy - self.anchor[1]) / self.cell + 1e-9) * self.cell
 
     def centre(self, rc: tuple[int, int]) -> Point:
-        return (self.x0 + rc[1] * self.cell, self.y_top - rc[0] * self.cell)
+        # rounded to a nanometre, so that a cell one step from the goal is exactly one cell
+        # away and not 0.0499999 m (which the strict success test would count as reached)
+        return (
+            round(self.x0 + rc[1] * self.cell, 9),
+            round(self.y_top - rc[0] * self.cell, 9),
+        )
 
     def cell_of(self, point: Point) -> tuple[int, int]:
         return (
@@ -377,7 +382,11 @@ def push_grid_problem(grid: Grid, ee_start: Point, box_start: Point) -> str:
 """
 
 
-def push_grid() -> AbstractModel:
-    grid = Grid(G.box_goal)
-    problem = generated_file("push-grid", push_grid_problem(grid, G.ee_start, G.box_start))
+def push_grid(cell: float = CELL) -> AbstractModel:
+    """Push's Sokoban-like grid model on cells of side ``cell`` (the registered model uses
+    :data:`CELL`; the invariance checker's toy uses coarser cells)."""
+    grid = Grid(G.box_goal, cell)
+    problem = generated_file(
+        f"push-grid-{cell:g}", push_grid_problem(grid, G.ee_start, G.box_start)
+    )
     return _model("push", problem, [grid.places(_grid_names("push"))], _PUSH_ENTITIES)

@@ -1,0 +1,140 @@
+"""Shaping terms on the augmented MDP, transition by transition, as the wrapper computes them.
+
+A :class:`Shaping` gives the bonus ``F`` of every stored transition ``(x, a, x')`` of an
+:class:`AugmentedMDP` for a step taken at time ``t``; the checker adds its expectation to the
+original reward. :class:`PotentialBased` reproduces :class:`planshape.shaping.PotentialShaping`
+exactly:
+
+* ``F = γ·φ(x', t+1) − φ(x, t)`` with γ the setting's discount (rule 1);
+* ``φ(x', ·) = 0`` when the step terminates — entering a terminal state, or reaching the end of
+  a finite horizon that ends by termination — and kept on truncation (rule 2);
+* ``φ(x, t)`` is the value the previous step stored: the wrapper stores φ of the state it just
+  entered, with the progress and time of that state, so it is a function of ``(x, t)`` (rule 3);
+* at a reset, progress is ``max(0, furthest subgoal reached in s0)`` and ``t = 0`` (rule 4; see
+  :attr:`AugmentedMDP.reachable`).
+
+Its two switches, ``discount`` and ``zero_at_termination``, turn it into the mistakes that two
+negative controls make (:mod:`planshape.invariance.controls`).
+
+Example:
+    >>> from planshape.baselines.paper import PlanBased
+    >>> from planshape.invariance.toys import make_toy
+    >>> aug = make_toy("random-episodic").augmented
+    >>> shaping = PotentialBased(PlanBased())
+    >>> F = shaping.transition_bonus(aug, Step(t=0, t_next=1, gamma=0.9, horizon=10))
+    >>> F.shape == aug.mdp.transitions.data.shape
+    True
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from typing import Literal
+from weakref import WeakKeyDictionary
+
+import numpy as np
+
+from planshape.invariance.augment import AugmentedMDP
+from planshape.potentials import Potential, make_potential
+
+__all__ = ["PotentialBased", "Shaping", "Step"]
+
+
+@dataclass(frozen=True)
+class Step:
+    """A step from time ``t`` to time ``t_next`` under discount ``gamma``, in a check whose
+    horizon (or time cap) is ``horizon``.
+
+    ``t_next`` equals ``t`` in the stationary part of a time-capped check. ``horizon_end`` says
+    whether the episode ends at ``t_next`` because of the horizon: not at all (``None``), by
+    termination (the wrapper's φ' is 0) or by truncation (φ' is kept).
+    """
+
+    t: int
+    t_next: int
+    gamma: float
+    horizon: int
+    horizon_end: Literal["terminated", "truncated"] | None = None
+
+
+class Shaping(ABC):
+    """A bonus added to every transition of an augmented MDP. Subclasses implement
+    :meth:`transition_bonus`; ``name`` labels results."""
+
+    name: str = "shaping"
+
+    def time_dependent(self, aug: AugmentedMDP, horizon: int) -> bool:
+        """Whether the bonus depends on ``t`` (then every time layer is solved separately)."""
+        return False
+
+    @abstractmethod
+    def transition_bonus(self, aug: AugmentedMDP, step: Step) -> np.ndarray:
+        """``F`` of every stored transition of ``aug.mdp`` (aligned with its ``data``)."""
+
+    def expected(self, aug: AugmentedMDP, step: Step) -> np.ndarray:
+        """``E[F | x, a]``, shape ``(n_x, n_actions)``."""
+        return aug.mdp.expected(self.transition_bonus(aug, step))
+
+
+class PotentialBased(Shaping):
+    """The shaping wrapper's ``F = γ·φ(x', t') − φ(x, t)`` for a :class:`Potential`.
+
+    Args:
+        potential: φ: a registered id, ``"module:attr"``, a class or an instance.
+        discount: multiply φ(x') by γ (the wrapper does; ``False`` is the source paper's
+            released code, negative control (b)).
+        zero_at_termination: φ(x') = 0 when the step terminates (the wrapper does; ``False``
+            is negative control (c)).
+    """
+
+    def __init__(
+        self,
+        potential: Potential | str | type[Potential],
+        *,
+        discount: bool = True,
+        zero_at_termination: bool = True,
+    ):
+        self.potential = make_potential(potential)
+        self.discount = discount
+        self.zero_at_termination = zero_at_termination
+        self.name = self.potential.name
+        # per augmented MDP (weakly: a toy built for one check must not pin memory, nor let a
+        # later MDP at the same address see its tables): t -> φ table, horizon -> reads time
+        self._tables: WeakKeyDictionary[AugmentedMDP, dict[int, np.ndarray]] = WeakKeyDictionary()
+        self._reads_time: WeakKeyDictionary[AugmentedMDP, dict[int, bool]] = WeakKeyDictionary()
+
+    def time_dependent(self, aug: AugmentedMDP, horizon: int) -> bool:
+        """Declared by ``Potential.time_dependent``, or detected: φ differs between ``t = 0``
+        and ``t = 1`` or ``t = horizon`` somewhere."""
+        if self.potential.time_dependent:
+            return True
+        known = self._reads_time.setdefault(aug, {})
+        if horizon not in known:
+            first = self._table(aug, 0)
+            known[horizon] = any(
+                not np.array_equal(first, self._table(aug, t)) for t in {1, horizon}
+            )
+        return known[horizon]
+
+    def values(self, aug: AugmentedMDP, t: int, time_dependent: bool) -> np.ndarray:
+        """φ(x, t) of every augmented state (φ(x, 0) when φ does not depend on time)."""
+        return self._table(aug, t if time_dependent else 0)
+
+    def _table(self, aug: AugmentedMDP, t: int) -> np.ndarray:
+        tables = self._tables.setdefault(aug, {})
+        if t not in tables:
+            tables[t] = aug.potential_values(self.potential, t)
+        return tables[t]
+
+    def transition_bonus(self, aug: AugmentedMDP, step: Step) -> np.ndarray:
+        dynamic = self.time_dependent(aug, step.horizon)
+        now = self.values(aug, step.t, dynamic)[aug.entry_states]
+        after = self.values(aug, step.t_next, dynamic)[aug.entry_next]
+        if self.zero_at_termination:
+            if step.horizon_end == "terminated":
+                after = np.zeros_like(after)
+            else:
+                after = np.where(aug.entry_terminates, 0.0, after)
+        factor = step.gamma if self.discount else 1.0
+        return factor * after - now
