@@ -12,159 +12,193 @@ from planshape.registration import TaskSpec, register_task
 # maze-reach 31); these give a learner room to reach the goal and then stay there. Pass
 # max_episode_steps=25 to gymnasium.make for the paper's setting.
 
-register_task(TaskSpec(
-    id="planshape/Reach-v0",
-    env_entry_point="planshape.tasks.planar.reach:ReachEnv",
-    models={
-        "single": "planshape.tasks.planar.abstract:reach_single",
-        "multi": "planshape.tasks.planar.abstract:reach_multi",
-        "grid": "planshape.tasks.planar.abstract:reach_grid",
-    },
-    default_model="grid",
-    max_episode_steps=40,
-    description="move the end effector to a goal in the plane and stay there",
-))
-register_task(TaskSpec(
-    id="planshape/Push-v0",
-    env_entry_point="planshape.tasks.planar.push:PushEnv",
-    models={
-        "single": "planshape.tasks.planar.abstract:push_single",
-        "multi": "planshape.tasks.planar.abstract:push_multi",
-        "grid": "planshape.tasks.planar.abstract:push_grid",
-    },
-    default_model="grid",
-    max_episode_steps=40,
-    description="push a box to a goal with the end effector",
-))
-register_task(TaskSpec(
-    id="planshape/MazeReach-v0",
-    env_entry_point="planshape.tasks.planar.maze_reach:MazeReachEnv",
-    models={
-        "single": "planshape.tasks.planar.abstract:maze_reach_single",
-        "multi": "planshape.tasks.planar.abstract:maze_reach_multi",
-        "grid": "planshape.tasks.planar.abstract:maze_reach_grid",
-    },
-    default_model="grid",
-    max_episode_steps=50,
-    description="reach a goal inside three walls, entering from above",
-))
+register_task(
+    TaskSpec(
+        id="planshape/Reach-v0",
+        env_entry_point="planshape.tasks.planar.reach:ReachEnv",
+        models={
+            "single": "planshape.tasks.planar.abstract:reach_single",
+            "multi": "planshape.tasks.planar.abstract:reach_multi",
+            "grid": "planshape.tasks.planar.abstract:reach_grid",
+        },
+        default_model="grid",
+        max_episode_steps=40,
+        description="move the end effector to a goal in the plane and stay there",
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/Push-v0",
+        env_entry_point="planshape.tasks.planar.push:PushEnv",
+        models={
+            "single": "planshape.tasks.planar.abstract:push_single",
+            "multi": "planshape.tasks.planar.abstract:push_multi",
+            "grid": "planshape.tasks.planar.abstract:push_grid",
+        },
+        default_model="grid",
+        max_episode_steps=40,
+        description="push a box to a goal with the end effector",
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MazeReach-v0",
+        env_entry_point="planshape.tasks.planar.maze_reach:MazeReachEnv",
+        models={
+            "single": "planshape.tasks.planar.abstract:maze_reach_single",
+            "multi": "planshape.tasks.planar.abstract:maze_reach_multi",
+            "grid": "planshape.tasks.planar.abstract:maze_reach_grid",
+        },
+        default_model="grid",
+        max_episode_steps=50,
+        description="reach a goal inside three walls, entering from above",
+    )
+)
 
 # ---- MetaWorld v3 ------------------------------------------------------------------------------
 
-register_task(TaskSpec(
-    id="planshape/MetaWorld-reach-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.reach:stages"},
-    max_episode_steps=500,
-    description="MetaWorld reach-v3: move the fingertips to a goal position",
-    kwargs={"env_name": "reach-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-push-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.push:stages"},
-    max_episode_steps=500,
-    description="MetaWorld push-v3: push a puck to a goal on the table",
-    kwargs={"env_name": "push-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-pick-place-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.pick_place:stages"},
-    max_episode_steps=500,
-    description="MetaWorld pick-place-v3: grasp a puck, lift it and carry it to a goal",
-    kwargs={"env_name": "pick-place-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-door-open-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.door:stages"},
-    max_episode_steps=500,
-    description="MetaWorld door-open-v3: hook a door's handle and swing the door open",
-    kwargs={"env_name": "door-open-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-drawer-open-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.drawer:open_stages"},
-    max_episode_steps=500,
-    description="MetaWorld drawer-open-v3: pull a drawer open by its handle",
-    kwargs={"env_name": "drawer-open-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-drawer-close-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.drawer:close_stages"},
-    max_episode_steps=500,
-    description="MetaWorld drawer-close-v3: push an open drawer shut",
-    kwargs={"env_name": "drawer-close-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-button-press-topdown-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.button:topdown_stages"},
-    max_episode_steps=500,
-    description="MetaWorld button-press-topdown-v3: press a button down from above",
-    kwargs={"env_name": "button-press-topdown-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-window-open-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.window:open_stages"},
-    max_episode_steps=500,
-    description="MetaWorld window-open-v3: slide a window open by its handle",
-    kwargs={"env_name": "window-open-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-window-close-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.window:close_stages"},
-    max_episode_steps=500,
-    description="MetaWorld window-close-v3: slide an open window shut by its handle",
-    kwargs={"env_name": "window-close-v3"},
-))
-register_task(TaskSpec(
-    id="planshape/MetaWorld-button-press-v3",
-    env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-    models={"stages": "planshape.tasks.metaworld.button:front_stages"},
-    max_episode_steps=500,
-    description="MetaWorld button-press-v3: push a wall-mounted button in from the front",
-    kwargs={"env_name": "button-press-v3"},
-))
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-reach-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.reach:stages"},
+        max_episode_steps=500,
+        description="MetaWorld reach-v3: move the fingertips to a goal position",
+        kwargs={"env_name": "reach-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-push-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.push:stages"},
+        max_episode_steps=500,
+        description="MetaWorld push-v3: push a puck to a goal on the table",
+        kwargs={"env_name": "push-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-pick-place-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.pick_place:stages"},
+        max_episode_steps=500,
+        description="MetaWorld pick-place-v3: grasp a puck, lift it and carry it to a goal",
+        kwargs={"env_name": "pick-place-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-door-open-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.door:stages"},
+        max_episode_steps=500,
+        description="MetaWorld door-open-v3: hook a door's handle and swing the door open",
+        kwargs={"env_name": "door-open-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-drawer-open-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.drawer:open_stages"},
+        max_episode_steps=500,
+        description="MetaWorld drawer-open-v3: pull a drawer open by its handle",
+        kwargs={"env_name": "drawer-open-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-drawer-close-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.drawer:close_stages"},
+        max_episode_steps=500,
+        description="MetaWorld drawer-close-v3: push an open drawer shut",
+        kwargs={"env_name": "drawer-close-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-button-press-topdown-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.button:topdown_stages"},
+        max_episode_steps=500,
+        description="MetaWorld button-press-topdown-v3: press a button down from above",
+        kwargs={"env_name": "button-press-topdown-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-window-open-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.window:open_stages"},
+        max_episode_steps=500,
+        description="MetaWorld window-open-v3: slide a window open by its handle",
+        kwargs={"env_name": "window-open-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-window-close-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.window:close_stages"},
+        max_episode_steps=500,
+        description="MetaWorld window-close-v3: slide an open window shut by its handle",
+        kwargs={"env_name": "window-close-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-button-press-v3",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.button:front_stages"},
+        max_episode_steps=500,
+        description="MetaWorld button-press-v3: push a wall-mounted button in from the front",
+        kwargs={"env_name": "button-press-v3"},
+    )
+)
 
 # ---- gymnasium-robotics ----------------------------------------------------------------------
 
-register_task(TaskSpec(
-    id="planshape/PointMaze_UMaze-v3",
-    env_entry_point="planshape.tasks.robotics:point_maze",
-    models={"grid": "planshape.tasks.robotics:umaze_grid"},
-    max_episode_steps=300,
-    description="PointMaze UMaze: roll a ball round the U from its fixed start cell to the goal",
-    kwargs={"maze": "UMaze"},
-))
-register_task(TaskSpec(
-    id="planshape/PointMaze_Medium-v3",
-    env_entry_point="planshape.tasks.robotics:point_maze",
-    models={"grid": "planshape.tasks.robotics:medium_grid"},
-    max_episode_steps=600,
-    description="PointMaze Medium: roll a ball across the 8x8 maze, corner to corner",
-    kwargs={"maze": "Medium"},
-))
-register_task(TaskSpec(
-    id="planshape/FetchReach-v4",
-    env_entry_point="planshape.tasks.robotics:fetch",
-    models={"stages": "planshape.tasks.robotics:fetch_reach_stages"},
-    max_episode_steps=50,
-    description="Fetch arm: move the gripper to a goal position",
-    kwargs={"env_id": "FetchReach-v4"},
-))
-register_task(TaskSpec(
-    id="planshape/FetchPush-v4",
-    env_entry_point="planshape.tasks.robotics:fetch",
-    models={"stages": "planshape.tasks.robotics:fetch_push_stages"},
-    max_episode_steps=50,
-    description="Fetch arm: push a block to a goal on the table",
-    kwargs={"env_id": "FetchPush-v4"},
-))
+register_task(
+    TaskSpec(
+        id="planshape/PointMaze_UMaze-v3",
+        env_entry_point="planshape.tasks.robotics:point_maze",
+        models={"grid": "planshape.tasks.robotics:umaze_grid"},
+        max_episode_steps=300,
+        description="PointMaze UMaze: roll a ball round the U from its start cell to the goal",
+        kwargs={"maze": "UMaze"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/PointMaze_Medium-v3",
+        env_entry_point="planshape.tasks.robotics:point_maze",
+        models={"grid": "planshape.tasks.robotics:medium_grid"},
+        max_episode_steps=600,
+        description="PointMaze Medium: roll a ball across the 8x8 maze, corner to corner",
+        kwargs={"maze": "Medium"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/FetchReach-v4",
+        env_entry_point="planshape.tasks.robotics:fetch",
+        models={"stages": "planshape.tasks.robotics:fetch_reach_stages"},
+        max_episode_steps=50,
+        description="Fetch arm: move the gripper to a goal position",
+        kwargs={"env_id": "FetchReach-v4"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/FetchPush-v4",
+        env_entry_point="planshape.tasks.robotics:fetch",
+        models={"stages": "planshape.tasks.robotics:fetch_push_stages"},
+        max_episode_steps=50,
+        description="Fetch arm: push a block to a goal on the table",
+        kwargs={"env_id": "FetchPush-v4"},
+    )
+)
 
 __all__ = ["TaskSpec", "register_task"]

@@ -49,7 +49,7 @@ from planshape.planning.grid import Cell, GridNames, cell_name, grid_pddl
 from planshape.planning.model import AbstractState
 from planshape.registration import AbstractModel
 from planshape.tasks.common import generated_file, pddl_file
-from planshape.tasks.metaworld.geometry import DisplacementGeometry
+from planshape.tasks.displacement import DisplacementGeometry
 
 REWARDS = ("sparse", "dense")
 #: FetchPush's ``touching``: gripper to block centre, and their height difference

@@ -117,52 +117,44 @@ def _navigation(
     )
 
 
-def reach() -> ToyProblem:
-    from planshape.tasks.planar.abstract import reach_grid
+def _grid_toy(name: str, episodic: bool) -> ToyProblem:
+    """A navigation toy on a planar task's real grid model (the settings are the toy's)."""
+    from planshape.tasks.planar.abstract import maze_reach_grid, reach_grid
     from planshape.tasks.planar.geometry import GEOMETRY as G
 
+    if name.startswith("maze"):
+        return _navigation(
+            name,
+            maze_reach_grid(),
+            G.maze_goal,
+            walls=True,
+            episodic=episodic,
+            slip=0.1,
+            gamma=0.95,
+            horizon=28,
+        )
     return _navigation(
-        "reach",
+        name,
         reach_grid(),
         G.reach_goal,
         walls=False,
-        episodic=False,
+        episodic=episodic,
         slip=0.0,
         gamma=0.95,
         horizon=20,
     )
+
+
+def reach() -> ToyProblem:
+    return _grid_toy("reach", episodic=False)
 
 
 def reach_episodic() -> ToyProblem:
-    from planshape.tasks.planar.abstract import reach_grid
-    from planshape.tasks.planar.geometry import GEOMETRY as G
-
-    return _navigation(
-        "reach-episodic",
-        reach_grid(),
-        G.reach_goal,
-        walls=False,
-        episodic=True,
-        slip=0.0,
-        gamma=0.95,
-        horizon=20,
-    )
+    return _grid_toy("reach-episodic", episodic=True)
 
 
 def maze_reach() -> ToyProblem:
-    from planshape.tasks.planar.abstract import maze_reach_grid
-    from planshape.tasks.planar.geometry import GEOMETRY as G
-
-    return _navigation(
-        "maze-reach",
-        maze_reach_grid(),
-        G.maze_goal,
-        walls=True,
-        episodic=False,
-        slip=0.1,
-        gamma=0.95,
-        horizon=28,
-    )
+    return _grid_toy("maze-reach", episodic=False)
 
 
 def push_model(cell: float = PUSH_CELL):

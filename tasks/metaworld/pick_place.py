@@ -26,7 +26,7 @@ import numpy as np
 
 from planshape.registration import AbstractModel
 from planshape.tasks.common import pddl_file
-from planshape.tasks.metaworld.geometry import DisplacementGeometry
+from planshape.tasks.displacement import DisplacementGeometry
 from planshape.tasks.metaworld.observation import (
     distance,
     goal,
@@ -34,6 +34,7 @@ from planshape.tasks.metaworld.observation import (
     main_object,
     tcp,
 )
+from planshape.tasks.metaworld.push import hand_to_puck, puck_to_goal
 
 HAND_AT = 0.03
 HOLDING_OPENING = (0.35, 0.8)
@@ -61,16 +62,6 @@ def lifted(obs: np.ndarray, _puck: str) -> np.ndarray:
 def at_goal(obs: np.ndarray, _puck: str) -> np.ndarray:
     """``(at-goal ?p)``: the puck is within ``AT_GOAL`` of the goal (MetaWorld's success)."""
     return distance(main_object(obs), goal(obs)) <= AT_GOAL
-
-
-def hand_to_puck(obs: np.ndarray) -> np.ndarray:
-    """Fingertips minus puck."""
-    return tcp(obs) - main_object(obs)
-
-
-def puck_to_goal(obs: np.ndarray) -> np.ndarray:
-    """Puck minus goal."""
-    return main_object(obs) - goal(obs)
 
 
 def stages() -> AbstractModel:

@@ -19,7 +19,7 @@ import numpy as np
 
 from planshape.registration import AbstractModel
 from planshape.tasks.common import pddl_file
-from planshape.tasks.metaworld.geometry import DisplacementGeometry
+from planshape.tasks.displacement import DisplacementGeometry
 from planshape.tasks.metaworld.observation import distance, goal, main_object, tcp
 
 HAND_AT = 0.03

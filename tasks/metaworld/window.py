@@ -26,7 +26,7 @@ import numpy as np
 from planshape.abstraction import Classifier
 from planshape.registration import AbstractModel
 from planshape.tasks.common import pddl_file
-from planshape.tasks.metaworld.geometry import Displacement, DisplacementGeometry
+from planshape.tasks.displacement import Displacement, DisplacementGeometry
 from planshape.tasks.metaworld.observation import goal, hand, main_object
 
 OPEN_PUSH_POINT = np.array([-0.03, -0.03, -0.08])
