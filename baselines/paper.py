@@ -23,7 +23,7 @@ Example:
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
 from planshape.potentials import Potential, ShapingContext
 
@@ -70,7 +70,7 @@ class DistanceVarying(Potential):
         targets = geometry.locate(ctx.subgoals[ctx.next_index])
         positions = geometry.positions(ctx.obs)
         for entity, target in targets.items():
-            distance = float(np.linalg.norm(np.asarray(positions[entity]) - target))
+            distance = math.dist(positions[entity], target)
             if distance > self.tolerance:
                 return -distance
         return 0.0
