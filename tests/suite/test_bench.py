@@ -49,8 +49,12 @@ def test_smoke_profile_with_a_submission_writes_the_leaderboard(smoke_out):
     assert SUBMISSION in board and "smoke" in board
     verdicts = {r["entry"]: r["invariance"] for r in rows if r["potential"]}
     assert set(verdicts.values()) == {"preserved"}
-    # scores come from the task's own metrics at every evaluation point
+    # scores come from the task's own metrics at every evaluation point (rule 5): the sparse
+    # reward pays 0 or 1 per step, so a return that included shaping terms would not be whole
     assert all(0.0 <= r["success_rate"] <= 1.0 and r["final_distance"] >= 0 for r in rows)
+    shaped = [r for r in rows if r["potential"]]
+    totals = [r["sparse_return"] * r["eval_episodes"] for r in shaped]
+    assert shaped and all(abs(total - round(total)) < 1e-9 for total in totals)
 
 
 def test_resume_reruns_nothing_that_finished(smoke_out):
