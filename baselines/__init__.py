@@ -9,3 +9,28 @@ from planshape.potentials import register_potential
 register_potential("plan-based", "planshape.baselines.paper:PlanBased")
 register_potential("time-varying", "planshape.baselines.paper:TimeVarying")
 register_potential("distance-varying", "planshape.baselines.paper:DistanceVarying")
+
+# ---- planner heuristics and plan distance (solve maze-reach; see heuristic.py, plan_distance.py)
+register_potential("plan-distance", "planshape.baselines.plan_distance:PlanDistance")
+register_potential("h-add", "planshape.baselines.heuristic:HeuristicPotential", heuristic="h-add")
+register_potential("h-ff", "planshape.baselines.heuristic:HeuristicPotential", heuristic="h-ff")
+register_potential("h-star", "planshape.baselines.heuristic:HeuristicPotential", heuristic="h-star")
+register_potential(
+    "h-add-discounted",
+    "planshape.baselines.heuristic:HeuristicPotential",
+    heuristic="h-add",
+    gamma=0.99,
+)
+register_potential(
+    "h-ff-discounted",
+    "planshape.baselines.heuristic:HeuristicPotential",
+    heuristic="h-ff",
+    gamma=0.99,
+)
+register_potential(
+    "h-star-discounted",
+    "planshape.baselines.heuristic:HeuristicPotential",
+    heuristic="h-star",
+    gamma=0.99,
+)
+register_potential("h-star-geodesic", "planshape.baselines.heuristic:HStarGeodesic")

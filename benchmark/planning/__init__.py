@@ -32,6 +32,7 @@ from planshape.planning.fast_downward import (
     search_arguments,
 )
 from planshape.planning.grid import Cell, GridNames, GridPddl, cell_name, grid_domain, grid_pddl
+from planshape.planning.grounding import GroundOperator, GroundTask, ground_task
 from planshape.planning.model import (
     AbstractState,
     ActionSchema,
@@ -45,7 +46,9 @@ from planshape.planning.model import (
     parse_atom,
 )
 from planshape.planning.parse import load_task, parse_task, read_pddl
+from planshape.planning.relaxed import h_add, h_ff, h_max
 from planshape.planning.solve import CacheDir, solve, solve_text
+from planshape.planning.statespace import GoalDistances
 from planshape.planning.subgoals import apply_action, subgoal_sequence
 
 __all__ = [
@@ -60,9 +63,12 @@ __all__ = [
     "Atom",
     "CacheDir",
     "Cell",
+    "GoalDistances",
     "GridNames",
     "GridPddl",
     "GroundAction",
+    "GroundOperator",
+    "GroundTask",
     "PddlTask",
     "Plan",
     "PlanCache",
@@ -77,6 +83,10 @@ __all__ = [
     "format_atom",
     "grid_domain",
     "grid_pddl",
+    "ground_task",
+    "h_add",
+    "h_ff",
+    "h_max",
     "load_task",
     "parse_atom",
     "parse_plan",

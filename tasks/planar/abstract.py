@@ -90,6 +90,11 @@ class Places:
         return np.einsum("...i,...i->...", offset, offset) < self.size**2
 
 
+#: a route: the groundings list it was built for, (table, columns, centres) per place table,
+#: and whether one table answers every grounding in order
+Route = tuple[object, list[tuple["Places", np.ndarray, np.ndarray]], bool]
+
+
 class InPlace:
     """Vectorized classifier: the entity at ``obs[position]`` is in the place named by argument
     ``place_arg`` of each grounding (``robot_at ?p`` -> 0, ``object_at ?b ?p`` -> 1)."""
@@ -98,31 +103,35 @@ class InPlace:
         self.places = places
         self.position = position
         self.place_arg = place_arg
-        self._groundings: object = None
-        self._plan: list[tuple[Places, np.ndarray, np.ndarray]] = []
-        self._whole = False
+        # routes per list of groundings: each evaluator (progress tracking, full abstract
+        # states) passes its own fixed list, so one route is built per list, once
+        self._routes: dict[
+            int, tuple[object, list[tuple[Places, np.ndarray, np.ndarray]], bool]
+        ] = {}
 
-    def _route(self, groundings: Sequence[tuple[str, ...]]) -> None:
-        """Which place table answers which grounding (cached for the evaluator's fixed list)."""
-        self._plan = []
+    def _route(self, groundings: Sequence[tuple[str, ...]]) -> Route:
+        """Which place table answers which grounding, and whether one table answers all."""
+        plan = []
         names = [g[self.place_arg] for g in groundings]
         for table in self.places:
             columns = [i for i, n in enumerate(names) if n in table.centres]
             if columns:
                 centres = np.array([table.centre(names[i]) for i in columns])
-                self._plan.append((table, np.array(columns), centres))
-        self._whole = len(self._plan) == 1 and len(self._plan[0][1]) == len(names)
-        self._groundings = groundings
+                plan.append((table, np.array(columns), centres))
+        whole = len(plan) == 1 and len(plan[0][1]) == len(names)
+        return groundings, plan, whole
 
     def __call__(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> np.ndarray:
-        if groundings is not self._groundings:
-            self._route(groundings)
+        route = self._routes.get(id(groundings))
+        if route is None or route[0] is not groundings:
+            route = self._routes[id(groundings)] = self._route(groundings)
+        _, plan, whole = route
         points = obs[..., self.position]
-        if self._whole:  # one table answers every grounding, in order
-            table, _, centres = self._plan[0]
+        if whole:  # one table answers every grounding, in order
+            table, _, centres = plan[0]
             return table.contains_centres(points, centres)
         out = np.zeros((*points.shape[:-1], len(groundings)), dtype=bool)
-        for table, columns, centres in self._plan:
+        for table, columns, centres in plan:
             out[..., columns] = table.contains_centres(points, centres)
         return out
 

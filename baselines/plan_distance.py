@@ -1,0 +1,127 @@
+"""Plan-distance potential: how much of the plan is left, counted in plan steps, with the step
+being walked measured continuously.
+
+The source paper's ``distance-varying`` potential pays for closing the straight-line distance
+to the next subgoal only; the plan's length after it is ignored, so every subgoal resets the
+potential, and the raw distance is in metres while reaching a subgoal is worth one plan step.
+``plan-distance`` puts both on one scale:
+
+    φ = −scale · (n − j + d / unit) / n,   j = min(max_idx + 1, n) the next subgoal,
+
+where n is the plan length, n − j the plan steps left after the next subgoal, d the distance
+between the first entity (in the ``locate`` hook's order: end effector, then box) that is
+farther than ``tolerance`` from its place in Ŝ[j] and that place (0 when all are within), and
+``unit`` the length of the plan step being walked: the distance that entity's place moves from
+Ŝ[j − 1] to Ŝ[j]. On a grid model a step moves one cell, so unit = one cell (0.05 m) and
+d/unit counts cells: a cell of the plan is worth one step, and because the plan goes around the
+walls, it is the geodesic around them that pays, not the straight line through them. On a
+waypoint model (``single``, ``multi``) unit is that segment's length, so walking any segment
+is worth one step. If the measured entity does not move in that step, unit is the longest move
+of any entity in it; if none moves, the mean move length over the plan (1 m if that is 0 too).
+
+φ(s0) ≈ −1 at the plan's start, φ = 0 once the plan is done and every entity is in place, and
+at the centre of the place of subgoal k with progress k, φ = −(n − k)/n: it rises by 1/n per
+subgoal. φ depends on (observation, max_idx) only, so the optimal policy of the augmented MDP
+is preserved (checked by ``planshape check-invariance --potential plan-distance``).
+
+Example:
+    >>> from planshape.potentials import ShapingContext
+    >>> from planshape.invariance.toys import PointGeometry
+    >>> geometry = PointGeometry({"a": (0, 0), "b": (0, 2), "c": (1, 2)})
+    >>> subgoals = [frozenset({("robot_at", p)}) for p in "abc"]
+    >>> ctx = ShapingContext(obs=np.array([0.0, 1.5]), progress=0, t=0, subgoals=subgoals,
+    ...                      geometry=geometry)
+    >>> PlanDistance()(ctx)  # next subgoal b, 0.5 of a 2 m step away, 1 step after it
+    -0.625
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from planshape.potentials import Geometry, Potential, ShapingContext
+
+__all__ = ["PlanDistance", "step_targets"]
+
+#: per subgoal index j: (entity, place in Ŝ[j], unit) in the ``locate`` hook's order
+StepTargets = list[list[tuple[str, list[float], float]]]
+
+
+def step_targets(geometry: Geometry, subgoals: Sequence[Any]) -> StepTargets:
+    """For every subgoal j, each entity's place in Ŝ[j] and the unit of the step into Ŝ[j]."""
+    fluents = getattr(subgoals, "fluents", None)
+    states = fluents if fluents is not None else subgoals
+    places = [
+        {e: np.asarray(v, float) for e, v in geometry.locate(state).items()} for state in states
+    ]
+    moves: list[dict[str, float]] = [{}]
+    for before, after in itertools.pairwise(places):
+        moves.append({e: float(np.linalg.norm(after[e] - before[e])) for e in after if e in before})
+    lengths = [m for step in moves for m in step.values() if m > 0]
+    fallback = float(np.mean(lengths)) if lengths else 1.0
+    table: StepTargets = []
+    for j, targets in enumerate(places):
+        longest = max(moves[j].values(), default=0.0)
+        table.append(
+            [
+                (
+                    entity,
+                    target.tolist(),
+                    moves[j].get(entity, 0.0) or longest or fallback,
+                )
+                for entity, target in targets.items()
+            ]
+        )
+    return table
+
+
+class PlanDistance(Potential):
+    """φ = −scale · (plan steps left after the next subgoal + distance to it in steps) / n.
+
+    Args:
+        scale: multiplies φ.
+        tolerance: an entity within this distance (m) of its place counts as in place, and
+            the next entity in the ``locate`` order is measured.
+        normalize: divide by the plan length n (φ(s0) ≈ −1); ``False`` counts plan steps.
+    """
+
+    def __init__(self, scale: float = 1.0, tolerance: float = 0.0, normalize: bool = True):
+        super().__init__(scale)
+        self.tolerance = float(tolerance)
+        self.normalize = normalize
+        self._tables: dict[int, tuple[Any, StepTargets]] = {}
+
+    def __getstate__(self) -> dict[str, Any]:  # the cache holds ids of this process's objects
+        state = self.__dict__.copy()
+        state["_tables"] = {}
+        return state
+
+    def _table(self, ctx: ShapingContext) -> StepTargets:
+        hit = self._tables.get(id(ctx.subgoals))
+        if hit is None or hit[0] is not ctx.subgoals:
+            table = step_targets(ctx.require_geometry(self.name), ctx.subgoals)
+            self._tables[id(ctx.subgoals)] = (ctx.subgoals, table)  # keeps it alive
+            return table
+        return hit[1]
+
+    def steps_left(self, ctx: ShapingContext) -> float:
+        """n − j + d/unit, before normalizing and scaling."""
+        final = ctx.final
+        if final <= 0:
+            return 0.0
+        j = ctx.next_index
+        positions = ctx.require_geometry(self.name).positions(ctx.obs)
+        for entity, target, unit in self._table(ctx)[j]:
+            distance = math.dist(np.asarray(positions[entity], float).tolist(), target)
+            if distance > self.tolerance:
+                return final - j + distance / unit
+        return float(final - j)
+
+    def potential(self, ctx: ShapingContext) -> float:
+        left = self.steps_left(ctx)
+        return -left / ctx.final if self.normalize and ctx.final > 0 else -left
