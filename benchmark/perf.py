@@ -2,20 +2,27 @@
 
 * planner: cold plan time and cache-hit time on generated 10x10 and 30x30 grids;
 * shaping: time per step shaped over unshaped, same environment and actions;
-* environments: steps per second of reach, push and maze-reach next to PointMaze.
+* environments: steps per second of reach, push and maze-reach next to PointMaze;
+* invariance: value iteration on an augmented MDP of about 10^6 state-action pairs;
+* training: training throughput with shaping over without.
 
-Each section is a script of its own (``planshape.perf_planner``, ``planshape.perf_shaping``,
-``planshape.perf_envs``); they print figures and never fail on a missed goal, so that the figures
-are always reported.
+Each section is a script of its own (``python -m planshape.perf_planner`` and so on); they
+print figures and never fail on a missed goal, so that the figures are always reported.
 """
 
 from __future__ import annotations
 
 import sys
 
-from planshape import perf_envs, perf_planner, perf_shaping
+from planshape import perf_envs, perf_invariance, perf_planner, perf_shaping, perf_training
 
-SECTIONS = [("planner", perf_planner), ("shaping", perf_shaping), ("environments", perf_envs)]
+SECTIONS = [
+    ("planner", perf_planner),
+    ("shaping", perf_shaping),
+    ("environments", perf_envs),
+    ("invariance", perf_invariance),
+    ("training", perf_training),
+]
 
 
 def main(argv: list[str] | None = None) -> int:
