@@ -21,6 +21,7 @@ Example:
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import json
 import math
@@ -159,7 +160,10 @@ def execute(spec: RunSpec) -> list[dict[str, Any]]:
     torch.set_num_threads(1)
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     key = spec.key
-    settings = dict(spec.hyperparameters)
+    run_id = spec.run_id
+    # a deep copy: stable-baselines3 writes into policy_kwargs, and the spec's settings are
+    # part of the run's identity
+    settings = copy.deepcopy(spec.hyperparameters)
     n_envs = settings.pop("n_envs")
     gamma = settings["gamma"]
     started = time.perf_counter()
@@ -201,7 +205,7 @@ def execute(spec: RunSpec) -> list[dict[str, Any]]:
     venv.close()
     eval_env.close()
     provenance = {
-        "run_id": spec.run_id,
+        "run_id": run_id,
         "task": key.task,
         "entry": key.entry,
         "potential": key.potential,

@@ -164,8 +164,9 @@ class BenchSession:
 
     def run(self, key: RunKey) -> list[dict[str, Any]]:
         spec = self.spec(key)
+        run_id = spec.run_id  # before running: the identity of what was asked for
         rows = execute(spec) if self.executor == "local" else _execute_on_ray(spec, self.address)
-        self.store.write(spec.run_id, rows)
+        self.store.write(run_id, rows)
         return rows
 
     def finish(self) -> str:

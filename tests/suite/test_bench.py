@@ -125,3 +125,12 @@ def test_ray_executor_gives_the_local_numbers(tmp_path):
     ]
     ResultStore(tmp_path).write(spec.run_id, remote_rows)
     assert ResultStore(tmp_path).has(spec.run_id)
+
+
+def test_a_run_keeps_its_identity_through_training():
+    """stable-baselines3 writes into policy_kwargs; the spec (and so the run id under which a
+    finished run is stored and found again) must not change."""
+    spec = RunSpec.create(RunKey("planshape/Reach-v0", "sparse", "SAC", 0, 64), "test", 64, 1)
+    before = spec.run_id
+    rows = execute(spec)
+    assert spec.run_id == before == rows[0]["run_id"]
