@@ -60,8 +60,16 @@ def _within(points: np.ndarray, goal, threshold: float) -> np.ndarray:
     return np.hypot(*(points - np.asarray(goal)).T) < threshold - 1e-9
 
 
-def _slipping(targets: np.ndarray, slip: float):
-    """Transition rows (s, a, s', p) with probability ``slip`` of a random action's outcome."""
+def _grid_mdp(
+    targets: np.ndarray,
+    slip: float,
+    observations: np.ndarray,
+    success: np.ndarray,
+    episodic: bool,
+) -> TabularMDP:
+    """The toy MDP of a grid: ``targets[s, a]`` is where action ``a`` leads from ``s``; with
+    probability ``slip`` a uniformly random action's outcome happens instead. The sparse reward
+    pays 1 on entering a success state, which terminates the episode when ``episodic``."""
     n, n_a = targets.shape
     s = np.repeat(np.arange(n), n_a)
     a = np.tile(np.arange(n_a), n)
@@ -69,7 +77,18 @@ def _slipping(targets: np.ndarray, slip: float):
     if slip:
         for b in range(n_a):
             rows.append((s, a, targets[s, b], np.full(len(s), slip / n_a)))
-    return (np.concatenate(part) for part in zip(*rows, strict=True))
+    s, a, s2, p = (np.concatenate(part) for part in zip(*rows, strict=True))
+    return TabularMDP.from_transitions(
+        n_states=n,
+        actions=ACTIONS,
+        state=s,
+        action=a,
+        next_state=s2,
+        probability=p,
+        reward=success[s2].astype(float),
+        terminal=success if episodic else None,
+        observations=observations,
+    )
 
 
 def _navigation(
@@ -91,18 +110,7 @@ def _navigation(
             targets[i, a] = index[other] if free else i
     observations = np.array([grid.centre(rc) for rc in cells])
     success = _within(observations, goal, G.success_threshold)
-    s, a, s2, p = _slipping(targets, slip)
-    mdp = TabularMDP.from_transitions(
-        n_states=len(cells),
-        actions=ACTIONS,
-        state=s,
-        action=a,
-        next_state=s2,
-        probability=p,
-        reward=success[s2].astype(float),
-        terminal=success if episodic else None,
-        observations=observations,
-    )
+    mdp = _grid_mdp(targets, slip, observations, success, episodic)
     kind = "episodic: the goal terminates" if episodic else "continuing: reach and stay"
     return ToyProblem(
         name=name,
@@ -182,18 +190,7 @@ def push(cell: float = PUSH_CELL, gamma: float = 0.9, horizon: int = 12) -> ToyP
             targets[i, a] = index[e2, b2] if a and e2 in inside and b2 in inside else i
     observations = np.array([(*grid.centre(e), *grid.centre(b)) for e, b in pairs])
     success = _within(observations[:, 2:], G.box_goal, G.success_threshold)
-    s, a, s2, p = _slipping(targets, 0.0)
-    mdp = TabularMDP.from_transitions(
-        n_states=len(pairs),
-        actions=ACTIONS,
-        state=s,
-        action=a,
-        next_state=s2,
-        probability=p,
-        reward=success[s2].astype(float),
-        terminal=success,
-        observations=observations,
-    )
+    mdp = _grid_mdp(targets, 0.0, observations, success, episodic=True)
     start = index[grid.cell_of(G.ee_start), grid.cell_of(G.box_start)]
     return ToyProblem(
         name="push",
