@@ -91,6 +91,7 @@ def test_a_task_without_schemas_cannot_be_grounded():
 def test_grounding_matches_fast_downwards_relaxed_exploration(which):
     # Fast Downward's translator ships with up-fast-downward, a dependency
     from fast_downward.translate import instantiate, normalize, options, pddl_parser
+
     task = maze_task() if which == "maze" else push_task()
     options.set_options([task.domain_file, task.problem_file])  # its normalize reads options
     fd_task = pddl_parser.open(task.domain_file, task.problem_file)

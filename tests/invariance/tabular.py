@@ -105,8 +105,9 @@ def chain_toy(
     integer ``weights`` and ``rewards``. Observations are ``(x, y, s)``."""
     n = len(labels)
     n_a = len(successors[0])
-    positions = np.array([(float(label), 0.0) if label >= 0 else (-10.0 - s, 0.0)
-                          for s, label in enumerate(labels)])
+    positions = np.array(
+        [(float(label), 0.0) if label >= 0 else (-10.0 - s, 0.0) for s, label in enumerate(labels)]
+    )
     centres = np.array([(float(j), 0.0) for j in range(regions)])
     progress, geometry = chain_progress(centres, radius=0.3)
     rows = [

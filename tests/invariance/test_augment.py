@@ -30,8 +30,9 @@ def test_shaping_term_equals_the_wrapper_step_by_step(toy_name, potential):
     for episode in range(6):
         start = int(rng.choice(np.flatnonzero(~mdp.terminal)))
         env = TabularEnv(mdp, start, seed=episode)
-        wrapper = PotentialShaping(env, make_potential(potential), toy.progress,
-                                   gamma=gamma, geometry=toy.geometry)
+        wrapper = PotentialShaping(
+            env, make_potential(potential), toy.progress, gamma=gamma, geometry=toy.geometry
+        )
         _, info = wrapper.reset()
         p = int(aug.reset_progress[start])
         assert info["progress"] == p
@@ -132,11 +133,13 @@ def test_terminating_step_equals_the_wrapper(potential):
     aug, mdp = toy.augmented, toy.mdp
     goal = int(np.flatnonzero(mdp.terminal)[0])
     right = mdp.actions.index("right")
-    start = next(s for s in range(mdp.n_states)
-                 if mdp.transitions.indices[s * mdp.n_actions + right] == goal)
+    start = next(
+        s for s in range(mdp.n_states) if mdp.transitions.indices[s * mdp.n_actions + right] == goal
+    )
     env = TabularEnv(mdp, start)
-    wrapper = PotentialShaping(env, make_potential(potential), toy.progress, gamma=toy.gamma,
-                               geometry=toy.geometry)
+    wrapper = PotentialShaping(
+        env, make_potential(potential), toy.progress, gamma=toy.gamma, geometry=toy.geometry
+    )
     wrapper.reset()
     x = int(aug.reset_progress[start]) * mdp.n_states + start
     _, _, terminated, _, info = wrapper.step(right)

@@ -26,15 +26,20 @@ def test_reference_potentials_preserve_optimal_actions_everywhere(potential):
 
 @pytest.mark.parametrize("scale", [0.1, 25.0])
 def test_scale_does_not_matter(scale):
-    report = check_potential("distance-varying", mdps=["maze-reach", "push"],
-                             potential_kwargs={"scale": scale})
+    report = check_potential(
+        "distance-varying", mdps=["maze-reach", "push"], potential_kwargs={"scale": scale}
+    )
     assert report.preserved
 
 
 @pytest.mark.parametrize(
     ("potential", "toy"),
-    [("plan-based", "maze-reach"), ("time-varying", "random-episodic"),
-     ("distance-varying", "random-continuing"), ("plan-based", "random-episodic")],
+    [
+        ("plan-based", "maze-reach"),
+        ("time-varying", "random-episodic"),
+        ("distance-varying", "random-continuing"),
+        ("plan-based", "random-episodic"),
+    ],
 )
 def test_finding_truncation_without_bootstrap_is_not_covered(potential, toy):
     """With the episode cut at H by a time limit, the wrapper keeps φ(s_H) (rule 2), right for
@@ -42,8 +47,7 @@ def test_finding_truncation_without_bootstrap_is_not_covered(potential, toy):
     optimum changes — harmfully, not only by breaking ties."""
     toy_problem = make_toy(toy)
     for preset in ("truncated", "truncated-discounted"):
-        verdict = check_shaping(toy_problem, PotentialBased(potential),
-                                toy_problem.setting(preset))
+        verdict = check_shaping(toy_problem, PotentialBased(potential), toy_problem.setting(preset))
         assert not verdict.preserved and verdict.harmful > 0
         example = verdict.counterexample
         assert example.harmful and example.t is not None

@@ -23,24 +23,34 @@ def run(capsys, *argv: str) -> tuple[int, str, str]:
 
 
 def test_preserved_exits_0_with_a_table(capsys):
-    status, out, _ = run(capsys, "--potential", "plan-based", "--mdp", "reach",
-                         "--mdp", "random-episodic")
+    status, out, _ = run(
+        capsys, "--potential", "plan-based", "--mdp", "reach", "--mdp", "random-episodic"
+    )
     assert status == 0
     assert out.startswith("potential plan-based: preserved on 6 of 6 checks")
     assert out.count("preserved") == 7 and "counterexample" not in out
 
 
 def test_violated_exits_1_with_a_counterexample(capsys):
-    status, out, _ = run(capsys, "--potential", "plan-based", "--mdp", "maze-reach",
-                         "--setting", "truncated")
+    status, out, _ = run(
+        capsys, "--potential", "plan-based", "--mdp", "maze-reach", "--setting", "truncated"
+    )
     assert status == 1
     assert "violated" in out and "counterexample on maze-reach" in out
     assert "optimal original {" in out and "Q shaped [" in out
 
 
 def test_json_has_a_verdict_per_mdp(capsys):
-    status, out, _ = run(capsys, "--potential", "planshape.baselines.paper:TimeVarying",
-                         "--mdp", "push", "--mdp", "random-continuing", "--json")
+    status, out, _ = run(
+        capsys,
+        "--potential",
+        "planshape.baselines.paper:TimeVarying",
+        "--mdp",
+        "push",
+        "--mdp",
+        "random-continuing",
+        "--json",
+    )
     assert status == 0
     data = json.loads(out)
     assert data["potential"] == "planshape.baselines.paper:TimeVarying"
@@ -51,17 +61,45 @@ def test_json_has_a_verdict_per_mdp(capsys):
 
 
 def test_violated_json_carries_the_counterexample(capsys):
-    status, out, _ = run(capsys, "--potential", "time-varying", "--mdp", "random-episodic",
-                         "--setting", "truncated", "--json")
+    status, out, _ = run(
+        capsys,
+        "--potential",
+        "time-varying",
+        "--mdp",
+        "random-episodic",
+        "--setting",
+        "truncated",
+        "--json",
+    )
     assert status == 1
     example = json.loads(out)["mdps"][0]["checks"][0]["counterexample"]
-    assert {"state", "observation", "progress", "t", "original_optimal", "shaped_optimal",
-            "q_original", "q_shaped", "regret", "harmful"} <= set(example)
+    assert {
+        "state",
+        "observation",
+        "progress",
+        "t",
+        "original_optimal",
+        "shaped_optimal",
+        "q_original",
+        "q_shaped",
+        "regret",
+        "harmful",
+    } <= set(example)
 
 
 def test_potential_arguments(capsys):
-    status, out, _ = run(capsys, "--potential", "plan-based", "--arg", "scale=7.5",
-                         "--arg", "normalize=false", "--mdp", "random-episodic", "--json")
+    status, out, _ = run(
+        capsys,
+        "--potential",
+        "plan-based",
+        "--arg",
+        "scale=7.5",
+        "--arg",
+        "normalize=false",
+        "--mdp",
+        "random-episodic",
+        "--json",
+    )
     assert status == 0 and json.loads(out)["preserved"]
 
 
@@ -76,8 +114,10 @@ def test_potential_arguments(capsys):
         (["--potential", "plan-based", "--arg", "scale"], "KEY=VALUE"),
         (["--potential", "plan-based", "--arg", "colour=3"], "cannot construct"),
         ([], "--potential ID|module:attr is required"),
-        (["--potential", f"{__name__}:StaysAtZeroButBreaks", "--mdp", "reach"],
-         "raised RuntimeError at state"),
+        (
+            ["--potential", f"{__name__}:StaysAtZeroButBreaks", "--mdp", "reach"],
+            "raised RuntimeError at state",
+        ),
     ],
 )
 def test_bad_input_exits_2_with_a_clear_message(capsys, argv, message):
@@ -90,8 +130,14 @@ def test_list(capsys):
     status, out, _ = run(capsys, "--list", "--json")
     data = json.loads(out)
     assert status == 0
-    assert list(data["mdps"]) == ["reach", "reach-episodic", "maze-reach", "push",
-                                  "random-episodic", "random-continuing"]
+    assert list(data["mdps"]) == [
+        "reach",
+        "reach-episodic",
+        "maze-reach",
+        "push",
+        "random-episodic",
+        "random-continuing",
+    ]
     assert "NOT covered" in data["settings"]["truncated"]
 
 
@@ -111,6 +157,7 @@ def test_a_potential_in_the_current_folder(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(sys, "path", [p for p in sys.path if p not in ("", ".")])
     monkeypatch.delitem(sys.modules, "my_fresh_potentials", raising=False)
-    status, out, _ = run(capsys, "--potential", "my_fresh_potentials:Doubled",
-                         "--mdp", "random-episodic")
+    status, out, _ = run(
+        capsys, "--potential", "my_fresh_potentials:Doubled", "--mdp", "random-episodic"
+    )
     assert status == 0 and "preserved on 3 of 3" in out

@@ -19,8 +19,13 @@ from planshape.invariance.toys import make_toy, random_toy
 
 def test_from_transitions_merges_repeated_rows_by_probability():
     mdp = TabularMDP.from_transitions(
-        n_states=2, actions=("a",), state=[0, 0, 1], action=[0, 0, 0], next_state=[1, 1, 1],
-        probability=[0.25, 0.75, 1.0], reward=[4.0, 0.0, 0.0],
+        n_states=2,
+        actions=("a",),
+        state=[0, 0, 1],
+        action=[0, 0, 0],
+        next_state=[1, 1, 1],
+        probability=[0.25, 0.75, 1.0],
+        reward=[4.0, 0.0, 0.0],
     )
     assert mdp.transitions.nnz == 2
     assert mdp.transitions[[0], [1]].item() == pytest.approx(1.0)
@@ -36,8 +41,13 @@ def test_from_transitions_merges_repeated_rows_by_probability():
     ],
 )
 def test_from_transitions_rejects_bad_input(change, message):
-    arrays = {"state": [0, 1], "action": [0, 0], "next_state": [1, 0],
-              "probability": [1.0, 1.0], "reward": [0.0, 0.0]}
+    arrays = {
+        "state": [0, 1],
+        "action": [0, 0],
+        "next_state": [1, 0],
+        "probability": [1.0, 1.0],
+        "reward": [0.0, 0.0],
+    }
     with pytest.raises(BadInputError, match=message):
         TabularMDP.from_transitions(n_states=2, actions=("a",), **{**arrays, **change})
 
@@ -129,5 +139,4 @@ def test_solver_input_errors():
         value_iteration(C, np.zeros((3, 1)), 0.9)
     mdp = random_toy(6, n_states=20, episodic=False).mdp
     with pytest.raises(NotConvergedError):
-        value_iteration(mdp.dynamics, mdp.expected_reward(), 0.999, max_iterations=2,
-                        jacobi=False)
+        value_iteration(mdp.dynamics, mdp.expected_reward(), 0.999, max_iterations=2, jacobi=False)

@@ -22,8 +22,11 @@ from tests.invariance.tabular import (
 )
 
 REWARDS = st.sampled_from([-1.0, -0.5, 0.0, 0.0, 0.5, 1.0])
-PROPERTY = settings(max_examples=100, deadline=None,
-                    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+PROPERTY = settings(
+    max_examples=100,
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+)
 
 
 @st.composite
@@ -47,8 +50,13 @@ def chain_toys(draw, max_states=5, max_actions=3, max_regions=3, deterministic=F
     rest = draw(st.lists(st.sampled_from([False, False, True]), min_size=n - 1, max_size=n - 1))
     terminal = [False, *rest]
     return chain_toy(
-        labels=labels, successors=successors, weights=weights, rewards=rewards,
-        terminal=terminal, regions=regions, gamma=draw(st.sampled_from([0.5, 0.8, 0.9])),
+        labels=labels,
+        successors=successors,
+        weights=weights,
+        rewards=rewards,
+        terminal=terminal,
+        regions=regions,
+        gamma=draw(st.sampled_from([0.5, 0.8, 0.9])),
         horizon=draw(st.integers(1, 4)),
     )
 
@@ -96,8 +104,11 @@ def test_random_bonuses_discounted_verdict_equals_brute_force(toy, data):
 
 
 @PROPERTY
-@given(toy=chain_toys(max_states=4, max_actions=2, max_regions=2, deterministic=True),
-       gamma=st.sampled_from([0.8, 1.0]), data=st.data())
+@given(
+    toy=chain_toys(max_states=4, max_actions=2, max_regions=2, deterministic=True),
+    gamma=st.sampled_from([0.8, 1.0]),
+    data=st.data(),
+)
 def test_random_bonuses_finite_horizon_verdict_equals_brute_force(toy, gamma, data):
     aug = toy.augmented
     nnz = aug.mdp.transitions.nnz
@@ -114,15 +125,17 @@ def test_random_bonuses_finite_horizon_verdict_equals_brute_force(toy, gamma, da
 
 
 @PROPERTY
-@given(toy=chain_toys(max_states=4, max_actions=2, max_regions=3, deterministic=True),
-       data=st.data())
+@given(
+    toy=chain_toys(max_states=4, max_actions=2, max_regions=3, deterministic=True), data=st.data()
+)
 def test_truncated_verdict_equals_brute_force(toy, data):
     """Time-limit truncation without bootstrapping (not covered by the theory): whatever the
     checker says about a time-indexed potential agrees with enumeration."""
     aug = toy.augmented
     n, regions, horizon = toy.mdp.n_states, toy.progress.final + 1, toy.horizon
-    table = data.draw(arrays(float, (n, regions, horizon + 1),
-                             elements=st.sampled_from([-1.0, 0.0, 0.5, 2.0])))
+    table = data.draw(
+        arrays(float, (n, regions, horizon + 1), elements=st.sampled_from([-1.0, 0.0, 0.5, 2.0]))
+    )
     shaping = PotentialBased(TablePotential(table, "time"))
     setting = Setting("finite-horizon-truncated", 1.0, horizon)
 

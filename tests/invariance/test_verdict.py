@@ -45,7 +45,10 @@ def test_comparison_reports_the_worst_mismatch_as_counterexample():
     shaped[x, worst] = shaped[x].max() + 1.0  # the shaped optimum is the original worst
     comparison.add(q, shaped, t=3)
     assert (comparison.checked, comparison.mismatches, comparison.harmful) == (
-        int(compared.sum()), 1, 1)
+        int(compared.sum()),
+        1,
+        1,
+    )
     example = comparison.counterexample()
     assert example.augmented_state == x and example.t == 3
     assert example.state == aug.state[x] and example.progress == aug.plan_progress[x]
@@ -82,8 +85,9 @@ def test_a_zero_bonus_is_preserved_and_the_appendix_holds():
 
 
 def test_report_is_json_with_a_verdict_per_mdp():
-    report = check_potential("plan-based", mdps=["random-episodic", "reach"],
-                             settings=["discounted", "truncated"])
+    report = check_potential(
+        "plan-based", mdps=["random-episodic", "reach"], settings=["discounted", "truncated"]
+    )
     data = json.loads(report.to_json())
     assert [m["mdp"] for m in data["mdps"]] == ["random-episodic", "reach"]
     assert data["preserved"] is False  # the truncated setting is not covered
