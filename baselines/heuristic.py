@@ -68,7 +68,7 @@ from planshape.errors import BadInputError, PotentialError
 from planshape.planning.grounding import ground_task
 from planshape.planning.relaxed import h_add, h_ff, h_max
 from planshape.planning.statespace import DEFAULT_MAX_STATES, GoalDistances
-from planshape.potentials import Potential, ShapingContext
+from planshape.potentials import Potential, ShapingContext, point_distance
 
 __all__ = ["HEURISTICS", "HStarGeodesic", "HeuristicPotential", "ModelBinding"]
 
@@ -423,8 +423,10 @@ class HStarGeodesic(_BoundPotential):
             positions = ctx.geometry.positions(ctx.obs)
             left = math.inf
             for entity, a, b, length in moves:
-                p = np.asarray(positions[entity], float).tolist()
-                left = min(left, h + math.dist(p, a) / length, h - 1 + math.dist(p, b) / length)
+                p = positions[entity]
+                left = min(
+                    left, h + point_distance(p, a) / length, h - 1 + point_distance(p, b) / length
+                )
         return -left * model.normalizer
 
 

@@ -23,9 +23,7 @@ Example:
 
 from __future__ import annotations
 
-import math
-
-from planshape.potentials import Potential, ShapingContext
+from planshape.potentials import Potential, ShapingContext, point_distance
 
 
 def _fraction_done(ctx: ShapingContext, normalize: bool) -> float:
@@ -70,7 +68,7 @@ class DistanceVarying(Potential):
         targets = geometry.locate(ctx.subgoals[ctx.next_index])
         positions = geometry.positions(ctx.obs)
         for entity, target in targets.items():
-            distance = math.dist(positions[entity], target)
+            distance = point_distance(positions[entity], target)
             if distance > self.tolerance:
                 return -distance
         return 0.0

@@ -38,13 +38,12 @@ Example:
 from __future__ import annotations
 
 import itertools
-import math
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from planshape.potentials import Geometry, Potential, ShapingContext
+from planshape.potentials import Geometry, Potential, ShapingContext, point_distance
 
 __all__ = ["PlanDistance", "step_targets"]
 
@@ -117,7 +116,7 @@ class PlanDistance(Potential):
         j = ctx.next_index
         positions = ctx.require_geometry(self.name).positions(ctx.obs)
         for entity, target, unit in self._table(ctx)[j]:
-            distance = math.dist(np.asarray(positions[entity], float).tolist(), target)
+            distance = point_distance(positions[entity], target)
             if distance > self.tolerance:
                 return final - j + distance / unit
         return float(final - j)

@@ -32,7 +32,7 @@ Example:
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -51,17 +51,29 @@ class Vectorized:
     ``fn(obs, groundings)`` gets the observation (with any leading batch axes) and a list of
     object tuples, and returns a boolean array of shape ``obs.shape[:-1] + (len(groundings),)``.
 
+    ``holding(obs, groundings)``, optional, answers the same question for *one* observation
+    (no batch axes) sparsely: the positions in ``groundings`` of the groundings that hold. It
+    is the per-step fast path of the shaping wrapper, worth writing when few groundings hold
+    at a time and they can be found without testing every one (a grid cell from a floor
+    division, a spatial hash). It must agree with ``fn``; when it is absent, ``fn`` is used.
+
     Example:
         >>> import numpy as np
         >>> centres = {"a": 0.0, "b": 1.0}
         >>> def near_all(obs, groundings):
         ...     c = np.array([centres[g[0]] for g in groundings])
         ...     return np.abs(obs[..., :1] - c) < 0.25
-        >>> Vectorized(near_all).fn(np.array([0.1]), [("a",), ("b",)]).tolist()
+        >>> def near_which(obs, groundings):
+        ...     return [i for i, g in enumerate(groundings) if abs(obs[0] - centres[g[0]]) < 0.25]
+        >>> near = Vectorized(near_all, holding=near_which)
+        >>> near.fn(np.array([0.1]), [("a",), ("b",)]).tolist()
         [True, False]
+        >>> list(near.holding(np.array([0.1]), [("a",), ("b",)]))
+        [0]
     """
 
     fn: Callable[[np.ndarray, Sequence[tuple[str, ...]]], np.ndarray]
+    holding: Callable[[Any, Sequence[tuple[str, ...]]], Iterable[int]] | None = None
 
 
 def check_classifiers(task: PddlTask, classifiers: Mapping[str, Classifier]) -> None:
@@ -111,6 +123,7 @@ class AtomEvaluator:
                 classifiers[predicate],
                 np.asarray(indices, dtype=np.intp),
                 [self.atoms[i][1:] for i in indices],
+                indices,
             )
             for predicate, indices in groups.items()
         ]
@@ -127,19 +140,47 @@ class AtomEvaluator:
         if not isinstance(obs, np.ndarray | Mapping):
             obs = np.asarray(obs)
         if self._single:
-            predicate, classifier, _, groundings = self._groups[0]
+            predicate, classifier, _, groundings, _ = self._groups[0]
             return _classify(predicate, classifier, obs, groundings)
         out = np.zeros((*batch_shape(obs), len(self.atoms)), dtype=bool)
-        for predicate, classifier, indices, groundings in self._groups:
+        for predicate, classifier, indices, groundings, _ in self._groups:
             out[..., indices] = _classify(predicate, classifier, obs, groundings)
         return out
+
+    def holding(self, obs: Any) -> set[int]:
+        """The positions in :attr:`atoms` of the atoms that hold in *one* observation.
+
+        The same truth as ``__call__``, computed without building arrays where the classifiers
+        allow: per-atom classifiers are called once each, and a :class:`Vectorized` one with
+        a ``holding`` function lists only what holds. This is the shaping wrapper's per-step
+        path, where a handful of small numpy operations would cost more than the classifiers.
+        """
+        if not isinstance(obs, np.ndarray | Mapping):
+            obs = np.asarray(obs)
+        held: set[int] = set()
+        for predicate, classifier, _, groundings, positions in self._groups:
+            if not isinstance(classifier, Vectorized):
+                for index, objects in zip(positions, groundings, strict=True):
+                    if _holds(predicate, classifier, obs, objects):
+                        held.add(index)
+                continue
+            if classifier.holding is not None:
+                try:
+                    found = list(classifier.holding(obs, groundings))
+                except Exception as exc:
+                    raise _classifier_error(predicate, exc, groundings) from exc
+            else:
+                found = np.flatnonzero(_classify(predicate, classifier, obs, groundings)).tolist()
+            held.update(positions[i] for i in found)
+        return held
 
 
 def batch_shape(obs: Any) -> tuple[int, ...]:
     """The leading (batch) axes of an observation array, or of a mapping's first array."""
     if isinstance(obs, Mapping):
-        obs = np.asarray(next(iter(obs.values())))
-    return obs.shape[:-1]
+        obs = next(iter(obs.values()))
+    shape = obs.shape if isinstance(obs, np.ndarray) else np.shape(obs)
+    return shape[:-1]
 
 
 def _classify(
@@ -149,10 +190,7 @@ def _classify(
         try:
             values = classifier.fn(obs, groundings)
         except Exception as exc:
-            raise ClassifierError(
-                f"classifier of predicate {predicate!r} raised {type(exc).__name__}: {exc} "
-                f"(objects {groundings[:3]}{'…' if len(groundings) > 3 else ''})"
-            ) from exc
+            raise _classifier_error(predicate, exc, groundings) from exc
         values = np.asarray(values)
         expected = (*batch_shape(obs), len(groundings))
         if values.shape != expected:
@@ -166,12 +204,36 @@ def _classify(
         try:
             value = classifier(obs, *objects)
         except Exception as exc:
-            raise ClassifierError(
-                f"classifier of predicate {predicate!r} raised {type(exc).__name__} on objects "
-                f"{format_atom((predicate, *objects))}: {exc}"
-            ) from exc
+            raise _atom_error(predicate, exc, objects) from exc
         columns.append(_as_truth(predicate, np.asarray(value), objects))
     return np.stack(columns, axis=-1) if columns else np.zeros((*batch_shape(obs), 0), bool)
+
+
+def _classifier_error(
+    predicate: str, exc: Exception, groundings: Sequence[tuple[str, ...]]
+) -> ClassifierError:
+    return ClassifierError(
+        f"classifier of predicate {predicate!r} raised {type(exc).__name__}: {exc} "
+        f"(objects {list(groundings[:3])}{'…' if len(groundings) > 3 else ''})"
+    )
+
+
+def _atom_error(predicate: str, exc: Exception, objects: tuple[str, ...]) -> ClassifierError:
+    return ClassifierError(
+        f"classifier of predicate {predicate!r} raised {type(exc).__name__} on objects "
+        f"{format_atom((predicate, *objects))}: {exc}"
+    )
+
+
+def _holds(predicate: str, classifier: Classifier, obs: Any, objects: tuple[str, ...]) -> bool:
+    """One per-atom classifier on one observation, with the checks of :func:`_classify`."""
+    try:
+        value = classifier(obs, *objects)
+    except Exception as exc:
+        raise _atom_error(predicate, exc, objects) from exc
+    if value.__class__ is bool or value.__class__ is np.bool_:
+        return bool(value)
+    return bool(_as_truth(predicate, np.asarray(value), objects))
 
 
 def _as_truth(predicate: str, values: np.ndarray, objects: tuple[str, ...]) -> np.ndarray:

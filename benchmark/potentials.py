@@ -37,6 +37,23 @@ from planshape.errors import BadInputError, PotentialError, UnknownIdError
 from planshape.planning.model import AbstractState
 
 
+def point_distance(a: Any, b: Any) -> float:
+    """Euclidean distance between two points given as arrays or sequences of floats.
+
+    For potentials that measure with the ``Geometry`` hooks: ``math.dist`` on plain floats is
+    several times faster than on numpy arrays, and φ runs on every environment step.
+
+    Example:
+        >>> point_distance(np.array([0.0, 3.0]), (4.0, 0.0))
+        5.0
+    """
+    if isinstance(a, np.ndarray):
+        a = a.tolist()
+    if isinstance(b, np.ndarray):
+        b = b.tolist()
+    return math.dist(a, b)
+
+
 class Geometry(Protocol):
     """The task's hooks that relate abstract subgoals to coordinates (for distance potentials).
 

@@ -15,7 +15,7 @@ Definitions (they are what the tests check):
 
 Example:
     >>> import numpy as np
-    >>> from planshape.abstraction import Abstraction
+    >>> from planshape.abstraction import Abstraction, batch_shape
     >>> from planshape.planning.model import PddlTask, PredicateSignature
     >>> task = PddlTask("d", "p", {"at": PredicateSignature("at", ("place",))},
     ...     {"object": None, "place": "object"}, {"a": "place", "b": "place", "c": "place"},
@@ -37,7 +37,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from planshape.abstraction import Abstraction
+from planshape.abstraction import Abstraction, batch_shape
 from planshape.planning.model import AbstractState
 
 SubgoalMatch = Literal["fluents", "exact"]
@@ -84,6 +84,16 @@ class PlanProgress:
         self._required_f = required.T.astype(np.float64)
         self._sizes = required.sum(axis=1).astype(np.float64)
         self._signed = np.where(required, 1.0, -1.0).T
+        # The same test for one observation, on Python sets (see _furthest_one): per subgoal
+        # its required atom columns; per atom the subgoals that require it, furthest first; per
+        # exact fluent part the furthest subgoal that has it.
+        self._needs = [frozenset(np.flatnonzero(row).tolist()) for row in required]
+        self._by_atom: list[list[int]] = [[] for _ in atoms]
+        for i in reversed(range(len(self._needs))):
+            for j in self._needs[i]:
+                self._by_atom[j].append(i)
+        self._always = max((i for i, need in enumerate(self._needs) if not need), default=-1)
+        self._exact = {need: i for i, need in enumerate(self._needs)}
 
     @property
     def final(self) -> int:
@@ -101,6 +111,8 @@ class PlanProgress:
 
     def furthest(self, obs: Any) -> np.ndarray | int:
         """Index of the furthest subgoal reached in ``obs``, or -1 when none is."""
+        if not batch_shape(obs):
+            return self._furthest_one(obs, -1)
         reached = self.reached(obs)
         if reached.ndim == 1:
             hits = np.flatnonzero(reached)
@@ -115,7 +127,27 @@ class PlanProgress:
 
     def advance(self, progress: np.ndarray | int, obs: Any) -> np.ndarray | int:
         """Progress after a step to ``obs``: never smaller than before."""
-        furthest = self.furthest(obs)
-        if isinstance(furthest, int):
-            return max(int(progress), furthest)
-        return np.maximum(progress, furthest)
+        if not batch_shape(obs):
+            return self._furthest_one(obs, int(progress))
+        return np.maximum(progress, self.furthest(obs))
+
+    def _furthest_one(self, obs: Any, floor: int) -> int:
+        """max(floor, furthest subgoal reached in one observation), the per-step path.
+
+        Only subgoals that require an atom that holds (or require none) can be reached, so the
+        search walks the held atoms' subgoals, furthest first, and stops at ``floor``. It
+        gives what :meth:`reached` gives (a test checks this on random observations).
+        """
+        held = self._evaluate.holding(obs)
+        if self.match == "exact":
+            return max(floor, self._exact.get(frozenset(held), -1))
+        best = max(floor, self._always)
+        needs = self._needs
+        for j in held:
+            for i in self._by_atom[j]:
+                if i <= best:
+                    break
+                if needs[i] <= held:
+                    best = i
+                    break
+        return best

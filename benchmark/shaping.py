@@ -118,4 +118,3 @@ class PotentialShaping(gymnasium.Wrapper):
     def max_idx(self) -> int:
         """The current episode's progress (read-only)."""
         return self._max_idx
-

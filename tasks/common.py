@@ -1,5 +1,5 @@
-"""Small helpers shared by the task families: where PDDL files live, and where generated
-problems are written.
+"""Small helpers shared by the task families: where PDDL files live, where generated problems
+are written, and the distance that classifiers measure.
 
 Example:
     >>> pddl_file("reach", "domain.pddl").name
@@ -11,9 +11,12 @@ Example:
 from __future__ import annotations
 
 import hashlib
+import math
 import os
 import tempfile
 from pathlib import Path
+
+import numpy as np
 
 
 def pddl_root() -> Path:
@@ -58,3 +61,22 @@ def generated_file(stem: str, text: str, suffix: str = ".pddl") -> Path:
             f.write(text)
         os.replace(f.name, path)
     return path
+
+
+def distance(a: np.ndarray, b: np.ndarray) -> np.ndarray | float:
+    """Euclidean distance over the last axis, for classifiers and geometry hooks.
+
+    Two points give a float: that is the shaping wrapper's per-step path, where
+    ``np.linalg.norm`` alone would cost more than the rest of a classifier. Leading batch axes
+    give an array.
+
+    Example:
+        >>> distance(np.array([0.0, 3.0]), np.array([4.0, 0.0]))
+        5.0
+        >>> distance(np.zeros((2, 2)), np.ones(2)).round(3).tolist()
+        [1.414, 1.414]
+    """
+    offset = np.subtract(a, b)
+    if offset.ndim == 1:
+        return math.sqrt(offset @ offset)
+    return np.sqrt(np.einsum("...i,...i->...", offset, offset))

@@ -48,7 +48,7 @@ from planshape.errors import BadInputError, UnknownIdError
 from planshape.planning.grid import Cell, GridNames, cell_name, grid_pddl
 from planshape.planning.model import AbstractState
 from planshape.registration import AbstractModel
-from planshape.tasks.common import generated_file, pddl_file
+from planshape.tasks.common import distance, generated_file, pddl_file
 from planshape.tasks.displacement import DisplacementGeometry
 
 REWARDS = ("sparse", "dense")
@@ -321,7 +321,7 @@ def fetch(env_id: str = "FetchReach-v4", reward: str = "sparse", **kwargs: Any) 
 
 def _success(obs: Any) -> np.ndarray:
     # Fetch's own test: distance strictly below distance_threshold (0.05 for Reach and Push).
-    return np.linalg.norm(achieved_goal(obs) - desired_goal(obs), axis=-1) < 0.05
+    return distance(achieved_goal(obs), desired_goal(obs)) < 0.05
 
 
 def gripper_at(obs: Any, _gripper: str, _location: str) -> np.ndarray:
@@ -338,7 +338,7 @@ def touching(obs: Any, _gripper: str, _block: str) -> np.ndarray:
     """FetchPush ``(touching ?g ?b)``: the gripper within ``FETCH_TOUCHING`` of the block and
     level with it (within ``FETCH_LEVEL``)."""
     offset = gripper_to_block(obs)
-    near = np.linalg.norm(offset, axis=-1) <= FETCH_TOUCHING
+    near = distance(offset, 0.0) <= FETCH_TOUCHING
     return near & (np.abs(offset[..., 2]) <= FETCH_LEVEL)
 
 

@@ -25,6 +25,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from planshape.tasks.common import distance
+
 OBS_DIM = 39
 HAND = slice(0, 3)
 GRIPPER = 3
@@ -32,6 +34,7 @@ OBJECT = slice(4, 7)
 OBJECT_QUAT = slice(7, 11)
 PREVIOUS = slice(18, 36)
 GOAL = slice(36, 39)
+__all__ = ["distance", "goal", "gripper_opening", "hand", "main_object", "tcp"]
 
 #: The fingertip centre (MetaWorld's ``tcp_center``, which its success tests use) relative to
 #: the hand position in the observation: 4.5 cm below, within about 1 cm horizontally while
@@ -62,8 +65,3 @@ def main_object(obs: np.ndarray) -> np.ndarray:
 def goal(obs: np.ndarray) -> np.ndarray:
     """The goal position, ``obs[..., 36:39]``."""
     return obs[..., GOAL]
-
-
-def distance(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Euclidean distance over the last axis."""
-    return np.linalg.norm(np.asarray(a) - np.asarray(b), axis=-1)

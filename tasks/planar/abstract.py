@@ -38,6 +38,7 @@ import numpy as np
 from planshape.abstraction import Vectorized
 from planshape.planning.grid import GridNames, cell_name, grid_pddl
 from planshape.planning.model import AbstractState
+from planshape.regions import RegionIndex
 from planshape.registration import AbstractModel
 from planshape.tasks.common import generated_file, pddl_file
 from planshape.tasks.planar.geometry import GEOMETRY, Point
@@ -70,6 +71,9 @@ class Places:
         names = tuple(self.centres)
         object.__setattr__(self, "_names", {n: i for i, n in enumerate(names)})
         object.__setattr__(self, "_xy", np.array([self.centres[n] for n in names], float))
+        object.__setattr__(
+            self, "_index", RegionIndex(self._xy.tolist(), self.size, square=self.square)
+        )
 
     def index(self, names: Sequence[str]) -> np.ndarray:
         lookup: dict[str, int] = self._names  # type: ignore[attr-defined]
@@ -82,6 +86,11 @@ class Places:
         """``points`` (..., 2) against places ``index``: shape (..., len(index))."""
         return self.contains_centres(points, self._xy[index])  # type: ignore[attr-defined]
 
+    def containing(self, x: float, y: float) -> list[int]:
+        """Positions (in ``centres``' order) of the places that contain the point ``(x, y)``:
+        the one-observation form of :meth:`contains`."""
+        return self._index.containing(x, y)  # type: ignore[attr-defined]
+
     def contains_centres(self, points: np.ndarray, centres: np.ndarray) -> np.ndarray:
         """``points`` (..., 2) against regions of this table centred at ``centres`` (k, 2)."""
         offset = points[..., None, :] - centres
@@ -91,8 +100,11 @@ class Places:
 
 
 #: a route: the groundings list it was built for, (table, columns, centres) per place table,
-#: and whether one table answers every grounding in order
-Route = tuple[object, list[tuple["Places", np.ndarray, np.ndarray]], bool]
+#: whether one table answers every grounding in order, and per table the grounding positions
+#: of each of its places (for the one-observation path)
+Route = tuple[
+    object, list[tuple["Places", np.ndarray, np.ndarray]], bool, list[dict[int, list[int]]]
+]
 
 
 class InPlace:
@@ -105,9 +117,7 @@ class InPlace:
         self.place_arg = place_arg
         # routes per list of groundings: each evaluator (progress tracking, full abstract
         # states) passes its own fixed list, so one route is built per list, once
-        self._routes: dict[
-            int, tuple[object, list[tuple[Places, np.ndarray, np.ndarray]], bool]
-        ] = {}
+        self._routes: dict[int, Route] = {}
 
     def _route(self, groundings: Sequence[tuple[str, ...]]) -> Route:
         """Which place table answers which grounding, and whether one table answers all."""
@@ -119,13 +129,33 @@ class InPlace:
                 centres = np.array([table.centre(names[i]) for i in columns])
                 plan.append((table, np.array(columns), centres))
         whole = len(plan) == 1 and len(plan[0][1]) == len(names)
-        return groundings, plan, whole
+        positions: list[dict[int, list[int]]] = []
+        for table in self.places:
+            where: dict[int, list[int]] = {}
+            for column, name in enumerate(names):
+                if name in table.centres:
+                    where.setdefault(int(table.index([name])[0]), []).append(column)
+            positions.append(where)
+        return groundings, plan, whole, positions
 
-    def __call__(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> np.ndarray:
+    def _route_for(self, groundings: Sequence[tuple[str, ...]]) -> Route:
         route = self._routes.get(id(groundings))
         if route is None or route[0] is not groundings:
             route = self._routes[id(groundings)] = self._route(groundings)
-        _, plan, whole = route
+        return route
+
+    def holding(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> list[int]:
+        """The positions in ``groundings`` that hold in one observation (see
+        :class:`planshape.abstraction.Vectorized`)."""
+        x, y = obs[self.position].tolist()
+        found = []
+        for table, where in zip(self.places, self._route_for(groundings)[3], strict=True):
+            for place in table.containing(x, y):
+                found.extend(where.get(place, ()))
+        return found
+
+    def __call__(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> np.ndarray:
+        _, plan, whole, _ = self._route_for(groundings)
         points = obs[..., self.position]
         if whole:  # one table answers every grounding, in order
             table, _, centres = plan[0]
@@ -229,8 +259,9 @@ def _waypoint_places(task: str) -> list[Places]:
 
 def _model(domain: str, problem_path, places: list[Places], entities) -> AbstractModel:
     classifiers = {
-        predicate: Vectorized(InPlace(places, position, arg))
+        predicate: Vectorized(in_place, holding=in_place.holding)
         for predicate, arg, position in entities.values()
+        for in_place in [InPlace(places, position, arg)]
     }
     return AbstractModel(
         domain=pddl_file(domain, "domain.pddl"),

@@ -64,3 +64,34 @@ def test_batch_progress_equals_one_at_a_time(xs):
     assert expected == list(
         np.maximum.accumulate([max(tracker.furthest(o), 0) for o in observations])
     )
+
+
+SUBGOAL_SETS = [
+    frozenset(),
+    frozenset({("at", "left")}),
+    frozenset({("at", "left"), ("at", "middle")}),
+    frozenset({("at", "right")}),
+    frozenset({("at", "middle")}),
+    frozenset({("at", "middle"), ("at", "right")}),
+]
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    plan=st.lists(st.sampled_from(SUBGOAL_SETS), min_size=1, max_size=8),
+    x=st.floats(-0.5, 1.5),
+    floor=st.integers(-1, 8),
+    match=st.sampled_from(["fluents", "exact"]),
+)
+def test_one_observation_path_agrees_with_the_matrix_test(plan, x, floor, match):
+    """A single observation goes through sets (AtomEvaluator.holding); a batch through one
+    matrix product. Overlapping places, multi-atom and empty subgoals, repeated subgoals and
+    any progress floor must give the same answer."""
+    tracker = PlanProgress(plan, Abstraction(line_task(), {"at": wide_at}), match=match)
+    obs = np.array([x])
+    reached = tracker.reached(obs[None])[0]  # the matrix path (a batch of one)
+    hits = np.flatnonzero(reached)
+    furthest = int(hits[-1]) if hits.size else -1
+    floor = min(floor, tracker.final)
+    assert tracker.furthest(obs) == furthest
+    assert tracker.advance(floor, obs) == max(floor, furthest)

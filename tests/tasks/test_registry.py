@@ -114,3 +114,20 @@ def test_planshape_tasks_lists_ids_models_predicates_and_rewards(capsys) -> None
     assert row["models"]["grid"]["predicates"] == ["object_at", "robot_at"]
     assert row["rewards"] == ["sparse", "dense", "shaped"]
     assert main(["tasks", "planshape/Nope-v0"]) == 2
+
+
+MODELS = [(task, model) for task in task_ids() for model in task_spec(task).models]
+
+
+@pytest.mark.parametrize(("task", "model"), MODELS, ids=[f"{t}-{m}" for t, m in MODELS])
+def test_one_observation_classification_agrees_with_the_batch_path(task: str, model: str) -> None:
+    """The shaping wrapper classifies one observation per step through ``holding`` (sparse,
+    Python) and batches through arrays; both must give the same atoms on visited states."""
+    env = make(task, f"shaped:{model}")
+    abstraction = env.get_wrapper_attr("progress").abstraction
+    evaluator = abstraction.evaluator(abstraction.fluent_atoms)
+    observations, _ = rollout(env, seed=0, steps=60)
+    env.observation_space.seed(0)
+    observations += [env.observation_space.sample() for _ in range(60)]
+    for obs in observations:
+        assert evaluator.holding(obs) == set(np.flatnonzero(evaluator(obs)).tolist())
