@@ -12,6 +12,14 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   per environment step, automatic entropy tuning. The source paper ran SAC with untuned
   library defaults; ``SAC-default`` reproduces that (stable-baselines3's defaults but γ).
 * MetaWorld and gymnasium-robotics: larger networks and longer episodes (see the table).
+* ``shaping_scale`` (every table, every entry's potential): φ is multiplied by
+  :data:`SHAPING_SCALE` = 1/(1 − γ) = 100. Potentials are written at unit scale (φ changes by
+  about 1 from the plan's start to its end); with γ = 0.99 the sparse reward of a solved
+  continuing task is worth up to 1/(1 − γ), so this makes the shaping as loud as the reward it
+  guides to. At unit scale a critic learns −φ within a few updates and the guidance is gone
+  before the goal is ever seen (PPO on reach at scale 1: 0/5 seeds for every potential). The
+  source paper tuned one multiplier per potential by hand; one rule for every entry,
+  submissions included, keeps the comparison fair. Sparse and dense runs ignore it.
 
 Example:
     >>> settings = hyperparameters("planshape/Reach-v0", "PPO")
@@ -27,6 +35,8 @@ from typing import Any
 from planshape.errors import UnknownIdError
 
 GAMMA = 0.99
+#: the multiplier of every potential in training: 1/(1 − γ), see the module docstring
+SHAPING_SCALE = 100.0
 
 PPO_PLANAR: dict[str, Any] = {
     "n_envs": 8,
@@ -36,6 +46,7 @@ PPO_PLANAR: dict[str, Any] = {
     "learning_rate": 3e-4,
     "gae_lambda": 0.95,
     "gamma": GAMMA,
+    "shaping_scale": SHAPING_SCALE,
     "ent_coef": 0.0,
     "policy_kwargs": {"net_arch": [64, 64]},
 }
@@ -48,9 +59,10 @@ SAC_PLANAR: dict[str, Any] = {
     "train_freq": 1,
     "gradient_steps": 1,
     "gamma": GAMMA,
+    "shaping_scale": SHAPING_SCALE,
     "policy_kwargs": {"net_arch": [64, 64]},
 }
-SAC_DEFAULT: dict[str, Any] = {"n_envs": 1, "gamma": GAMMA}
+SAC_DEFAULT: dict[str, Any] = {"n_envs": 1, "gamma": GAMMA, "shaping_scale": SHAPING_SCALE}
 PPO_ROBOTICS: dict[str, Any] = {
     **PPO_PLANAR,
     "n_steps": 512,

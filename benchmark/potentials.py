@@ -22,6 +22,7 @@ wherever a potential is asked for (``gymnasium.make(..., potential="my_module:Ha
 
 from __future__ import annotations
 
+import copy
 import importlib
 import math
 import os
@@ -141,6 +142,24 @@ class Potential(ABC):
     @abstractmethod
     def potential(self, ctx: ShapingContext) -> float:
         """φ of the augmented state in ``ctx``, before ``scale``."""
+
+    def rescaled(self, factor: float) -> Potential:
+        """This potential with φ multiplied by ``factor`` (a shallow copy; ``self`` unchanged).
+
+        Example:
+            >>> from planshape.baselines.paper import PlanBased
+            >>> PlanBased(scale=2.0).rescaled(50.0).scale
+            100.0
+        """
+        if not (math.isfinite(factor) and factor > 0):
+            raise BadInputError(
+                f"{self.name}: a potential's scale factor must be finite and positive, not {factor}"
+            )
+        if factor == 1.0:
+            return self
+        copied = copy.copy(self)
+        copied.scale = self.scale * float(factor)
+        return copied
 
     def __call__(self, ctx: ShapingContext) -> float:
         value = self.scale * float(self.potential(ctx))

@@ -131,6 +131,7 @@ def make_task_env(
     model: str | None = None,
     gamma: float | None = None,
     potential_kwargs: Mapping[str, Any] | None = None,
+    potential_scale: float = 1.0,
     search: str = "astar-lmcut",
     match: SubgoalMatch = "fluents",
     **env_kwargs: Any,
@@ -159,6 +160,7 @@ def make_task_env(
         potential if potential is not None else "plan-based",
         gamma=gamma,
         potential_kwargs=potential_kwargs,
+        potential_scale=potential_scale,
         search=search,
         match=match,
     )
@@ -202,15 +204,19 @@ def shape(
     *,
     gamma: float,
     potential_kwargs: Mapping[str, Any] | None = None,
+    potential_scale: float = 1.0,
     search: str = "astar-lmcut",
     match: SubgoalMatch = "fluents",
 ) -> gymnasium.Env:
-    """Plan ``model`` (cached), bind its classifiers and wrap ``env`` in potential shaping."""
+    """Plan ``model`` (cached), bind its classifiers and wrap ``env`` in potential shaping.
+
+    ``potential_scale`` multiplies φ on top of the potential's own ``scale`` (the benchmark's
+    ``shaping_scale``, see :mod:`planshape.hyperparams`)."""
     task, plan = _planned(*_stamped(model.domain), *_stamped(model.problem), search)
     abstraction = Abstraction(task, model.classifiers)
     return PotentialShaping(
         env,
-        make_potential(potential, **dict(potential_kwargs or {})),
+        make_potential(potential, **dict(potential_kwargs or {})).rescaled(potential_scale),
         PlanProgress(plan.subgoals, abstraction, match=match),
         gamma=gamma,
         geometry=model.geometry,

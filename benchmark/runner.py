@@ -113,14 +113,18 @@ def package_versions() -> dict[str, str]:
     return versions
 
 
-def make_training_env(key: RunKey, n_envs: int, gamma: float, seed: int):
+def make_training_env(
+    key: RunKey, n_envs: int, gamma: float, seed: int, shaping_scale: float = 1.0
+):
     """The VecEnv a learner trains on: each environment wrapped in its own shaping, inside the
-    VecEnv, shaped with the learner's γ."""
+    VecEnv, shaped with the learner's γ and φ multiplied by ``shaping_scale``."""
     from stable_baselines3.common.env_util import make_vec_env
 
     env_kwargs: dict[str, Any] = {"reward": key.reward, "render_mode": None}
     if key.reward == "shaped":
-        env_kwargs.update(potential=key.potential, model=key.model, gamma=gamma)
+        env_kwargs.update(
+            potential=key.potential, model=key.model, gamma=gamma, potential_scale=shaping_scale
+        )
     return make_vec_env(key.task, n_envs=n_envs, seed=seed, env_kwargs=env_kwargs)
 
 
@@ -165,9 +169,10 @@ def execute(spec: RunSpec) -> list[dict[str, Any]]:
     # part of the run's identity
     settings = copy.deepcopy(spec.hyperparameters)
     n_envs = settings.pop("n_envs")
+    shaping_scale = settings.pop("shaping_scale", 1.0)
     gamma = settings["gamma"]
     started = time.perf_counter()
-    venv = make_training_env(key, n_envs, gamma, key.seed)
+    venv = make_training_env(key, n_envs, gamma, key.seed, shaping_scale)
     eval_env = gymnasium.make(key.task)
     algorithm = getattr(stable_baselines3, ALGORITHM_CLASSES[key.algo])
     model = make_algorithm(algorithm, venv, seed=key.seed, device="cpu", verbose=0, **settings)

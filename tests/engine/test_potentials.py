@@ -73,3 +73,35 @@ def test_distance_varying_measures_first_unmet_entity_towards_next_subgoal():
     assert phi(ctx(2, obs=np.array([2.0, 0.0, 5.0, 0.0]), geometry=geometry)) == 0.0
     with pytest.raises(BadInputError, match="locate/positions"):
         phi(ctx(0, obs=np.zeros(4)))
+
+
+def test_potential_scale_multiplies_the_shaping_term_and_leaves_the_reference_alone():
+    import gymnasium
+
+    import planshape  # noqa: F401  (registers the tasks)
+    from planshape.baselines.paper import PlanBased
+    from planshape.profiles import RunKey
+    from planshape.runner import make_training_env
+
+    def shaping_terms(scale: float) -> list[float]:
+        env = gymnasium.make(
+            "planshape/Reach-v0",
+            reward="shaped",
+            potential="plan-distance",
+            model="multi",
+            gamma=0.99,
+            potential_scale=scale,
+        )
+        env.reset(seed=0)
+        return [env.step(np.array([0.1, 1.0], np.float32))[4]["shaping"] for _ in range(10)]
+
+    loud, quiet = shaping_terms(100.0), shaping_terms(1.0)
+    assert any(q != 0 for q in quiet)
+    assert loud == pytest.approx([100 * q for q in quiet])
+    reference = PlanBased(scale=2.0)
+    assert reference.rescaled(3.0).scale == 6.0 and reference.scale == 2.0
+    with pytest.raises(BadInputError, match="finite and positive"):
+        reference.rescaled(-1.0)
+    key = RunKey("planshape/Reach-v0", "plan-based/multi", "PPO", 0, 1024)
+    venv = make_training_env(key, 1, 0.99, 0, shaping_scale=100.0)
+    assert venv.get_attr("potential")[0].scale == 100.0
