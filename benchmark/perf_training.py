@@ -14,7 +14,7 @@ import time
 import planshape  # noqa: F401  (registers the tasks)
 from planshape.hyperparams import hyperparameters
 from planshape.profiles import RunKey
-from planshape.runner import ALGORITHM_CLASSES, make_training_env
+from planshape.runner import make_learner
 
 GOAL = 0.90
 CASES = [
@@ -26,19 +26,13 @@ CASES = [
 
 def steps_per_second(task: str, entry: str, algo: str, steps: int) -> float:
     """Train ``algo`` on one entry for ``steps`` steps (no evaluation) and time it."""
-    import stable_baselines3
     import torch
-
-    from planshape.training import make_algorithm
 
     torch.set_num_threads(1)
     settings = hyperparameters(task, algo)
-    n_envs = settings.pop("n_envs")
     if "learning_starts" in settings:  # time gradient steps, not the random warm-up
         settings["learning_starts"] = 0
-    venv = make_training_env(RunKey(task, entry, algo, 0, steps), n_envs, settings["gamma"], 0)
-    algorithm = getattr(stable_baselines3, ALGORITHM_CLASSES[algo])
-    model = make_algorithm(algorithm, venv, seed=0, device="cpu", **settings)
+    model = make_learner(RunKey(task, entry, algo, 0, steps), settings)
     start = time.perf_counter()
     model.learn(steps)
     return steps / (time.perf_counter() - start)

@@ -113,6 +113,25 @@ def package_versions() -> dict[str, str]:
     return versions
 
 
+def make_learner(key: RunKey, hyperparameters: dict[str, Any]) -> Any:
+    """The stable-baselines3 learner of ``key`` on its training VecEnv.
+
+    ``n_envs`` and ``shaping_scale`` of ``hyperparameters`` configure the environments, the
+    rest the algorithm. The settings are deep-copied first: stable-baselines3 writes into
+    ``policy_kwargs``, and a run's settings are part of its identity.
+    """
+    import stable_baselines3
+
+    from planshape.training import make_algorithm
+
+    settings = copy.deepcopy(hyperparameters)
+    n_envs = settings.pop("n_envs")
+    shaping_scale = settings.pop("shaping_scale", 1.0)
+    venv = make_training_env(key, n_envs, settings["gamma"], key.seed, shaping_scale)
+    algorithm = getattr(stable_baselines3, ALGORITHM_CLASSES[key.algo])
+    return make_algorithm(algorithm, venv, seed=key.seed, device="cpu", verbose=0, **settings)
+
+
 def make_training_env(
     key: RunKey, n_envs: int, gamma: float, seed: int, shaping_scale: float = 1.0
 ):
@@ -155,27 +174,17 @@ ALGORITHM_CLASSES = {"PPO": "PPO", "SAC": "SAC", "SAC-default": "SAC"}
 
 def execute(spec: RunSpec) -> list[dict[str, Any]]:
     """Train and evaluate one run; return its tidy rows (one per evaluation point)."""
-    import stable_baselines3
     import torch
     from stable_baselines3.common.callbacks import BaseCallback
-
-    from planshape.training import make_algorithm
 
     torch.set_num_threads(1)
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     key = spec.key
     run_id = spec.run_id
-    # a deep copy: stable-baselines3 writes into policy_kwargs, and the spec's settings are
-    # part of the run's identity
-    settings = copy.deepcopy(spec.hyperparameters)
-    n_envs = settings.pop("n_envs")
-    shaping_scale = settings.pop("shaping_scale", 1.0)
-    gamma = settings["gamma"]
+    gamma = spec.hyperparameters["gamma"]
     started = time.perf_counter()
-    venv = make_training_env(key, n_envs, gamma, key.seed, shaping_scale)
+    model = make_learner(key, spec.hyperparameters)
     eval_env = gymnasium.make(key.task)
-    algorithm = getattr(stable_baselines3, ALGORITHM_CLASSES[key.algo])
-    model = make_algorithm(algorithm, venv, seed=key.seed, device="cpu", verbose=0, **settings)
 
     points: list[tuple[int, dict[str, float]]] = []
     eval_seconds = [0.0]
@@ -207,7 +216,7 @@ def execute(spec: RunSpec) -> list[dict[str, Any]]:
     record()
     wall = time.perf_counter() - started
     train_seconds = max(wall - eval_seconds[0], 1e-9)
-    venv.close()
+    model.get_env().close()
     eval_env.close()
     provenance = {
         "run_id": run_id,

@@ -58,9 +58,18 @@ class DisplacementGeometry:
                 f"targets name entities {unknown} that have no displacement function; add them "
                 f"to displacements (known: {sorted(self.displacements)})"
             )
+        object.__setattr__(self, "_located", {})
 
     def locate(self, subgoal: AbstractState) -> dict[str, np.ndarray]:
-        """Entity -> target displacement for every predicate of ``subgoal`` that places one."""
+        """Entity -> target displacement for every predicate of ``subgoal`` that places one
+        (computed once per subgoal: potentials ask on every step)."""
+        cache: dict[AbstractState, dict[str, np.ndarray]] = self._located  # type: ignore[attr-defined]
+        located = cache.get(subgoal)
+        if located is None:
+            located = cache[subgoal] = self._locate(subgoal)
+        return located
+
+    def _locate(self, subgoal: AbstractState) -> dict[str, np.ndarray]:
         present = {atom[0] for atom in subgoal}
         located: dict[str, np.ndarray] = {}
         for predicate, (entity, target) in self.targets.items():
