@@ -147,16 +147,16 @@ class ModelBinding:
         if ctx._abstract_state is not None or self._classify is None:
             mask = self.ground.mask(ctx.abstract_state)
             return mask, lambda: mask
-        columns = np.flatnonzero(self._classify(ctx.obs))
+        columns = frozenset(self._classify.holding(ctx.obs))
         bits = self.column_bits
 
         def mask() -> int:
             out = 0
-            for c in columns.tolist():
+            for c in columns:
                 out |= bits[c]
             return out
 
-        return columns.tobytes(), mask
+        return columns, mask
 
 
 _BINDINGS: dict[tuple[int, int, int], tuple[Any, Any, ModelBinding]] = {}

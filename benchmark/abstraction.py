@@ -289,7 +289,7 @@ class Abstraction:
 
     def abstract_state(self, obs: Any) -> AbstractState:
         """ŝ = Abstract(s): the fluent atoms that hold, plus the static atoms of ``:init``."""
-        held = self._all(obs)
-        if held.ndim != 1:
+        if batch_shape(obs):
             raise ValueError("abstract_state takes one observation; use classify_batch for many")
-        return self.static_atoms | {a for a, h in zip(self.fluent_atoms, held, strict=True) if h}
+        atoms = self.fluent_atoms
+        return self.static_atoms | {atoms[i] for i in self._all.holding(obs)}

@@ -61,3 +61,35 @@ def test_maze_grid_plan_goes_around_the_walls():
     ys = [float(geometry.locate(s)["ee"][1]) for s in subgoals]
     # the plan climbs above the walls' tops (y = 0.15) before it comes down to the goal
     assert max(ys) > 0.15 and ys[-1] == pytest.approx(0.0)
+
+
+@pytest.mark.parametrize("factory", ["reach_grid", "maze_reach_grid", "push_grid"])
+def test_grid_cells_tile_the_plane_even_on_their_edges(factory: str) -> None:
+    """Every float32 point near a cell edge is in exactly one cell, on the batch path and on
+    the one-observation path (two cells at once once made the h* state space explode)."""
+    from planshape.tasks.planar import abstract
+
+    model = getattr(abstract, factory)()
+    places = model.classifiers["robot_at"].fn.places[0]
+    xy = places._xy
+    edges_x = (np.unique(xy[:, 0])[:-1] + np.unique(xy[:, 0])[1:]) / 2
+    edges_y = (np.unique(xy[:, 1])[:-1] + np.unique(xy[:, 1])[1:]) / 2
+
+    def around(edges: np.ndarray) -> list[np.float32]:
+        values = []
+        for edge in edges:
+            for direction in (-1.0, 1.0):
+                step = np.float32(edge)
+                for _ in range(3):
+                    values.append(step)
+                    step = np.nextafter(step, np.float32(direction), dtype=np.float32)
+        return values
+
+    inside_x = np.float32(xy[len(xy) // 2, 0])
+    inside_y = np.float32(xy[len(xy) // 2, 1])
+    points = [(v, inside_y) for v in around(edges_x)] + [(inside_x, v) for v in around(edges_y)]
+    every = np.arange(len(xy))
+    for x, y in points:
+        hits = places.contains(np.array([x, y], np.float32), every)
+        assert hits.sum() == 1, (x, y)
+        assert places.containing(float(x), float(y)) == np.flatnonzero(hits).tolist()
