@@ -22,6 +22,7 @@ from pathlib import Path
 from planshape.cli import Handler, subcommand
 from planshape.errors import BadInputError
 from planshape.profiles import PROFILES, get_profile
+from planshape.runner import RESULTS_FOLDER
 
 SUITE = Path(__file__).resolve().parent / "suite"
 
@@ -71,7 +72,7 @@ def _bench(parser: argparse.ArgumentParser) -> Handler:
     )
     parser.add_argument("--profile", default="default", help="profile (default: %(default)s)")
     parser.add_argument(
-        "--out", type=Path, default=Path("leaderboard"), help="results and leaderboard folder"
+        "--out", type=Path, default=Path(RESULTS_FOLDER), help="results and leaderboard folder"
     )
     parser.add_argument(
         "--potential",
@@ -133,7 +134,7 @@ def _check_submission(reference: str) -> None:
 @subcommand("leaderboard", "render the leaderboard again from the stored results")
 def _leaderboard(parser: argparse.ArgumentParser) -> Handler:
     parser.add_argument(
-        "--out", type=Path, default=Path("leaderboard"), help="results and leaderboard folder"
+        "--out", type=Path, default=Path(RESULTS_FOLDER), help="results and leaderboard folder"
     )
     parser.add_argument("--profile", default=None, help="profile named in the header")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")

@@ -85,21 +85,38 @@ class RunSpec:
 @cache
 def code_version() -> str:
     """``git describe`` of the checkout the benchmark runs from (the working directory, or the
-    source tree of an editable install), else the installed package's version."""
+    source tree of an editable install), else the installed package's version.
+
+    ``-dirty`` marks uncommitted changes to tracked files *outside* ``leaderboard/``: the
+    benchmark writes its results there, and its own output does not make the code dirty.
+    """
     for folder in (Path.cwd(), Path(__file__).resolve().parent.parent):
         try:
-            out = subprocess.run(
-                ["git", "describe", "--always", "--dirty", "--tags"],
-                cwd=folder,
-                capture_output=True,
-                text=True,
-                timeout=10,
-                check=True,
+            described = _git(folder, "describe", "--always", "--tags")
+            changed = _git(
+                folder,
+                "status",
+                "--porcelain",
+                "--untracked-files=no",
+                "--",
+                ".",
+                f":(exclude){RESULTS_FOLDER}",
             )
         except (OSError, subprocess.SubprocessError):
             continue
-        return out.stdout.strip()
+        return described + ("-dirty" if changed else "")
     return f"planshape {package_versions().get('planshape', '?')}"
+
+
+#: the default results folder, relative to the repository root
+RESULTS_FOLDER = "leaderboard"
+
+
+def _git(folder: Path, *args: str) -> str:
+    out = subprocess.run(
+        ["git", *args], cwd=folder, capture_output=True, text=True, timeout=10, check=True
+    )
+    return out.stdout.strip()
 
 
 @cache
