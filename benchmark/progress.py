@@ -15,7 +15,7 @@ Definitions (they are what the tests check):
 
 Example:
     >>> import numpy as np
-    >>> from planshape.abstraction import Abstraction, batch_shape
+    >>> from planshape.abstraction import Abstraction
     >>> from planshape.planning.model import PddlTask, PredicateSignature
     >>> task = PddlTask("d", "p", {"at": PredicateSignature("at", ("place",))},
     ...     {"object": None, "place": "object"}, {"a": "place", "b": "place", "c": "place"},

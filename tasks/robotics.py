@@ -47,6 +47,7 @@ from planshape.abstraction import Vectorized
 from planshape.errors import BadInputError, UnknownIdError
 from planshape.planning.grid import Cell, GridNames, cell_name, grid_pddl
 from planshape.planning.model import AbstractState
+from planshape.regions import Lattice
 from planshape.registration import AbstractModel
 from planshape.tasks.common import distance, generated_file, pddl_file
 from planshape.tasks.displacement import DisplacementGeometry
@@ -241,23 +242,38 @@ def _as_dict(obs: Any) -> Mapping[str, Any]:
 
 @dataclass(frozen=True)
 class InCell:
-    """Vectorized classifier of ``(robot_at ?c)``: the ball lies in the cell's square.
+    """Vectorized classifier of ``(robot_at ?c)``: the ball lies in the cell. The cells tile the
+    maze (:class:`planshape.regions.Lattice`), so the ball is in exactly one cell, also on an
+    edge between two.
 
     Example:
         >>> import numpy as np
         >>> in_cell = InCell({"cell_0_0": np.array([0.0, 0.0]), "cell_0_1": np.array([1.0, 0.0])})
         >>> obs = {"achieved_goal": np.array([0.9, 0.2])}
-        >>> in_cell(obs, [("cell_0_0",), ("cell_0_1",)]).tolist()
-        [False, True]
+        >>> groundings = [("cell_0_0",), ("cell_0_1",)]
+        >>> in_cell(obs, groundings).tolist(), in_cell.holding(obs, groundings)
+        ([False, True], [1])
     """
 
     centres: Mapping[str, np.ndarray]
     half_size: float = 0.5
 
+    def __post_init__(self) -> None:
+        names = list(self.centres)
+        lattice = Lattice([self.centres[n] for n in names], 2 * self.half_size)
+        object.__setattr__(self, "_lattice", lattice)
+        object.__setattr__(self, "_names", names)
+
     def __call__(self, obs: Any, groundings: Sequence[tuple[str, ...]]) -> np.ndarray:
         centres = np.stack([self.centres[g[0]] for g in groundings])
-        offsets = np.abs(achieved_goal(obs)[..., None, :] - centres)
-        return np.all(offsets <= self.half_size, axis=-1)
+        return self._lattice.contains(achieved_goal(obs), centres)  # type: ignore[attr-defined]
+
+    def holding(self, obs: Any, groundings: Sequence[tuple[str, ...]]) -> list[int]:
+        """The positions in ``groundings`` of the ball's cell (the one-observation path)."""
+        x, y = achieved_goal(obs).tolist()
+        names = self._names  # type: ignore[attr-defined]
+        here = {names[i] for i in self._lattice.containing(x, y)}  # type: ignore[attr-defined]
+        return [k for k, g in enumerate(groundings) if g[0] in here]
 
 
 @dataclass(frozen=True)
@@ -286,10 +302,11 @@ def maze_grid(maze: str) -> AbstractModel:
         rows, cols, task.reset_cell, task.goal_cell, blocked_cells=task.walls(), names=names
     )
     centres = task.cell_centres()
+    in_cell = InCell(centres)
     return AbstractModel(
         domain=generated_file("pointmaze-domain", grid.domain),
         problem=generated_file(f"pointmaze-{maze.lower()}-grid", grid.problem),
-        classifiers={names.at: Vectorized(InCell(centres))},
+        classifiers={names.at: Vectorized(in_cell, holding=in_cell.holding)},
         geometry=MazeGeometry(centres, at=names.at),
     )
 

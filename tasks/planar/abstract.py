@@ -38,7 +38,7 @@ import numpy as np
 from planshape.abstraction import Vectorized
 from planshape.planning.grid import GridNames, cell_name, grid_pddl
 from planshape.planning.model import AbstractState
-from planshape.regions import RegionIndex
+from planshape.regions import Lattice, RegionIndex
 from planshape.registration import AbstractModel
 from planshape.tasks.common import generated_file, pddl_file
 from planshape.tasks.planar.geometry import GEOMETRY, Point
@@ -57,16 +57,14 @@ CONTACT = GEOMETRY.box_half_size + GEOMETRY.ee_radius
 class Places:
     """Named regions of the plane: discs of one radius, or squares of one half side.
 
-    ``lattice=(x0, y0, pitch)`` makes the squares the cells of a grid that tiles the plane: a
-    point is in the one cell whose lattice index ``(round((x − x0)/pitch), round((y − y0)/pitch))``
-    is its centre's. Squares tested one by one would leave points on a shared edge in no cell
-    and, where rounding puts two centres a hair closer than ``pitch``, in two.
+    ``grid=True`` makes the squares (of side ``2 · size``) the cells of a grid that tiles the
+    plane: every point is in exactly one cell (see :class:`planshape.regions.Lattice`).
 
     Example:
         >>> places = Places({"a": (0.0, 0.0), "b": (1.0, 0.0)}, size=0.1)
         >>> places.contains(np.array([[0.05, 0.0], [0.5, 0.0]]), places.index(["a", "b"])).tolist()
         [[True, False], [False, False]]
-        >>> cells = Places({"a": (0.0, 0.0), "b": (0.1, 0.0)}, 0.05, True, lattice=(0.0, 0.0, 0.1))
+        >>> cells = Places({"a": (0.0, 0.0), "b": (0.1, 0.0)}, 0.05, square=True, grid=True)
         >>> cells.contains(np.array([[0.05, 0.0], [0.15, 0.0]]), cells.index(["a", "b"])).tolist()
         [[True, False], [False, True]]
     """
@@ -74,22 +72,19 @@ class Places:
     centres: Mapping[str, Point]
     size: float
     square: bool = False
-    lattice: tuple[float, float, float] | None = None
+    grid: bool = False
 
     def __post_init__(self) -> None:
+        if self.grid and not self.square:
+            raise ValueError("grid places are square cells; pass square=True")
         names = tuple(self.centres)
         object.__setattr__(self, "_names", {n: i for i, n in enumerate(names)})
         object.__setattr__(self, "_xy", np.array([self.centres[n] for n in names], float))
-        object.__setattr__(
-            self, "_index", RegionIndex(self._xy.tolist(), self.size, square=self.square)
+        xy = self._xy.tolist()  # type: ignore[attr-defined]
+        finder = (
+            Lattice(xy, 2 * self.size) if self.grid else RegionIndex(xy, self.size, self.square)
         )
-        if self.lattice is not None:
-            cells = {self._cell(x, y): i for i, (x, y) in enumerate(self._xy.tolist())}
-            object.__setattr__(self, "_cells", cells)
-
-    def _cell(self, x: float, y: float) -> tuple[int, int]:
-        x0, y0, pitch = self.lattice  # type: ignore[misc]
-        return round((x - x0) / pitch), round((y - y0) / pitch)
+        object.__setattr__(self, "_finder", finder)
 
     def index(self, names: Sequence[str]) -> np.ndarray:
         lookup: dict[str, int] = self._names  # type: ignore[attr-defined]
@@ -105,19 +100,12 @@ class Places:
     def containing(self, x: float, y: float) -> list[int]:
         """Positions (in ``centres``' order) of the places that contain the point ``(x, y)``:
         the one-observation form of :meth:`contains`."""
-        if self.lattice is not None:
-            hit = self._cells.get(self._cell(x, y))  # type: ignore[attr-defined]
-            return [] if hit is None else [hit]
-        return self._index.containing(x, y)  # type: ignore[attr-defined]
+        return self._finder.containing(x, y)  # type: ignore[attr-defined]
 
     def contains_centres(self, points: np.ndarray, centres: np.ndarray) -> np.ndarray:
         """``points`` (..., 2) against regions of this table centred at ``centres`` (k, 2)."""
-        if self.lattice is not None:
-            x0, y0, pitch = self.lattice
-            # float64 first: float32 observations would round differently from the Python path
-            where = np.rint((np.asarray(points, np.float64) - (x0, y0)) / pitch)
-            cells = np.rint((centres - (x0, y0)) / pitch)
-            return (where[..., None, :] == cells).all(axis=-1)
+        if self.grid:
+            return self._finder.contains(points, centres)  # type: ignore[attr-defined]
         offset = points[..., None, :] - centres
         if self.square:
             return np.abs(offset).max(axis=-1) < self.size
@@ -372,7 +360,7 @@ class Grid:
         centres = {
             cell_name((r, c), names): self.centre((r, c)) for r in range(rows) for c in range(cols)
         }
-        return Places(centres, self.cell / 2, square=True, lattice=(self.x0, self.y_top, self.cell))
+        return Places(centres, self.cell / 2, square=True, grid=True)
 
     def blocked_edges(self, margin: float) -> list[tuple[tuple[int, int], tuple[int, int]]]:
         """Pairs of adjacent cells whose connecting segment touches a maze wall."""

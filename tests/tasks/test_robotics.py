@@ -212,3 +212,18 @@ def test_distance_potential_runs_on_the_geometry(task_id: str) -> None:
     assert info["potential"] < 0
     *_, info = env.step(env.action_space.sample())
     assert math.isfinite(info["shaping"])
+
+
+def test_maze_cells_tile_the_plane_even_on_their_edges():
+    """A ball on the edge between two cells is in exactly one (closed squares put it in two)."""
+    from planshape.tasks.robotics import InCell
+
+    centres = {f"cell_{r}_{c}": np.array([c - 0.5, 0.5 - r]) for r in range(2) for c in range(2)}
+    in_cell = InCell(centres)
+    groundings = [(name,) for name in centres]
+    for x in (-0.9, -0.5, 0.0, np.nextafter(0.0, 1.0), 0.5, 0.9):  # x = 0: the inner edge
+        for y in (-0.9, 0.0, np.nextafter(0.0, -1.0), 0.5, 0.9):
+            obs = {"achieved_goal": np.array([x, y])}
+            hits = in_cell(obs, groundings)
+            assert hits.sum() == 1, (x, y)
+            assert in_cell.holding(obs, groundings) == np.flatnonzero(hits).tolist()
