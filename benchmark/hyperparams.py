@@ -20,6 +20,17 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   before the goal is ever seen (PPO on reach at scale 1: 0/5 seeds for every potential). The
   source paper tuned one multiplier per potential by hand; one rule for every entry,
   submissions included, keeps the comparison fair. Sparse and dense runs ignore it.
+* ``rescale_observations`` (planar tables): the learner sees the observation mapped from its
+  Box bounds onto [-1, 1] (:func:`planshape.runner.learner_view`; the shaping still reads
+  metres). The raw coordinates span a few tenths of a metre, on which a [64, 64] tanh MLP is
+  nearly affine: on maze-reach, PPO's policy mean was an affine function of the position
+  (up-right everywhere, so the end effector went over the wall and stopped at the
+  workspace's top edge above the goal) and its critic output was 72.0–72.1 at every probed
+  position, so it could neither follow the geodesic nor absorb the potential. Rescaled,
+  h-star-geodesic and plan-distance solved maze-reach on 2/2 seeds each at the default
+  budget, sparse and dense on 0/1. rl-zoo normalizes MuJoCo observations for the same
+  reason. ``SAC-default`` keeps raw observations (the paper's untuned setting); MetaWorld and
+  gymnasium-robotics observations have no finite bounds to rescale from.
 
 Example:
     >>> settings = hyperparameters("planshape/Reach-v0", "PPO")
@@ -48,6 +59,7 @@ PPO_PLANAR: dict[str, Any] = {
     "gamma": GAMMA,
     "shaping_scale": SHAPING_SCALE,
     "ent_coef": 0.0,
+    "rescale_observations": True,
     "policy_kwargs": {"net_arch": [64, 64]},
 }
 SAC_PLANAR: dict[str, Any] = {
@@ -60,6 +72,7 @@ SAC_PLANAR: dict[str, Any] = {
     "gradient_steps": 1,
     "gamma": GAMMA,
     "shaping_scale": SHAPING_SCALE,
+    "rescale_observations": True,
     "policy_kwargs": {"net_arch": [64, 64]},
 }
 SAC_DEFAULT: dict[str, Any] = {"n_envs": 1, "gamma": GAMMA, "shaping_scale": SHAPING_SCALE}
@@ -67,12 +80,14 @@ PPO_ROBOTICS: dict[str, Any] = {
     **PPO_PLANAR,
     "n_steps": 512,
     "batch_size": 512,
+    "rescale_observations": False,
     "policy_kwargs": {"net_arch": [256, 256]},
 }
 SAC_ROBOTICS: dict[str, Any] = {
     **SAC_PLANAR,
     "learning_rate": 3e-4,
     "learning_starts": 5000,
+    "rescale_observations": False,
     "policy_kwargs": {"net_arch": [256, 256]},
 }
 

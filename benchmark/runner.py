@@ -37,6 +37,7 @@ from typing import Any
 import gymnasium
 import numpy as np
 
+from planshape.errors import BadInputError
 from planshape.hyperparams import hyperparameters
 from planshape.profiles import RunKey
 
@@ -133,9 +134,10 @@ def package_versions() -> dict[str, str]:
 def make_learner(key: RunKey, hyperparameters: dict[str, Any]) -> Any:
     """The stable-baselines3 learner of ``key`` on its training VecEnv.
 
-    ``n_envs`` and ``shaping_scale`` of ``hyperparameters`` configure the environments, the
-    rest the algorithm. The settings are deep-copied first: stable-baselines3 writes into
-    ``policy_kwargs``, and a run's settings are part of its identity.
+    ``n_envs``, ``shaping_scale`` and ``rescale_observations`` of ``hyperparameters`` configure
+    the environments, the rest the algorithm. The settings are deep-copied first:
+    stable-baselines3 writes into ``policy_kwargs``, and a run's settings are part of its
+    identity.
     """
     import stable_baselines3
 
@@ -144,16 +146,25 @@ def make_learner(key: RunKey, hyperparameters: dict[str, Any]) -> Any:
     settings = copy.deepcopy(hyperparameters)
     n_envs = settings.pop("n_envs")
     shaping_scale = settings.pop("shaping_scale", 1.0)
-    venv = make_training_env(key, n_envs, settings["gamma"], key.seed, shaping_scale)
+    rescale = settings.pop("rescale_observations", False)
+    venv = make_training_env(
+        key, n_envs, settings["gamma"], key.seed, shaping_scale, rescale_observations=rescale
+    )
     algorithm = getattr(stable_baselines3, ALGORITHM_CLASSES[key.algo])
     return make_algorithm(algorithm, venv, seed=key.seed, device="cpu", verbose=0, **settings)
 
 
 def make_training_env(
-    key: RunKey, n_envs: int, gamma: float, seed: int, shaping_scale: float = 1.0
+    key: RunKey,
+    n_envs: int,
+    gamma: float,
+    seed: int,
+    shaping_scale: float = 1.0,
+    rescale_observations: bool = False,
 ):
     """The VecEnv a learner trains on: each environment wrapped in its own shaping, inside the
-    VecEnv, shaped with the learner's γ and φ multiplied by ``shaping_scale``."""
+    VecEnv, shaped with the learner's γ and φ multiplied by ``shaping_scale``; with
+    ``rescale_observations``, the learner sees :func:`learner_view` of each environment."""
     from stable_baselines3.common.env_util import make_vec_env
 
     env_kwargs: dict[str, Any] = {"reward": key.reward, "render_mode": None}
@@ -161,7 +172,43 @@ def make_training_env(
         env_kwargs.update(
             potential=key.potential, model=key.model, gamma=gamma, potential_scale=shaping_scale
         )
-    return make_vec_env(key.task, n_envs=n_envs, seed=seed, env_kwargs=env_kwargs)
+    wrapper = learner_view if rescale_observations else None
+    return make_vec_env(
+        key.task, n_envs=n_envs, seed=seed, env_kwargs=env_kwargs, wrapper_class=wrapper
+    )
+
+
+def make_evaluation_env(key: RunKey, hyperparameters: dict[str, Any]) -> gymnasium.Env:
+    """The task with its own sparse reward, seen by the learner as in training."""
+    env = gymnasium.make(key.task)
+    return learner_view(env) if hyperparameters.get("rescale_observations") else env
+
+
+def learner_view(env: gymnasium.Env) -> gymnasium.Env:
+    """``env`` with its observations mapped affinely from their Box bounds onto [-1, 1].
+
+    Outermost wrapper: the shaping inside still classifies the raw observation, and a fixed
+    bijection of the observation changes neither the MDP nor its optimal policies. Planar
+    coordinates in metres span a few tenths, on which a small tanh MLP is nearly affine
+    (see :mod:`planshape.hyperparams`).
+
+    Example:
+        >>> import planshape
+        >>> env = learner_view(gymnasium.make("planshape/Reach-v0"))
+        >>> float(env.observation_space.low.min()), float(env.observation_space.high.max())
+        (-1.0, 1.0)
+    """
+    space = env.observation_space
+    if not isinstance(space, gymnasium.spaces.Box) or not (
+        np.isfinite(space.low).all() and np.isfinite(space.high).all()
+    ):
+        raise BadInputError(
+            f"rescale_observations: {env.spec.id if env.spec else env} has observation space "
+            f"{space}, not a Box with finite bounds; set rescale_observations=False in its "
+            "hyperparameter table (planshape.hyperparams)"
+        )
+    bound = np.ones(space.shape, space.dtype)
+    return gymnasium.wrappers.RescaleObservation(env, -bound, bound)
 
 
 def evaluate(model: Any, env: gymnasium.Env, episodes: int, seed: int) -> dict[str, float]:
@@ -201,7 +248,7 @@ def execute(spec: RunSpec) -> list[dict[str, Any]]:
     gamma = spec.hyperparameters["gamma"]
     started = time.perf_counter()
     model = make_learner(key, spec.hyperparameters)
-    eval_env = gymnasium.make(key.task)
+    eval_env = make_evaluation_env(key, spec.hyperparameters)
 
     points: list[tuple[int, dict[str, float]]] = []
     eval_seconds = [0.0]
