@@ -55,14 +55,15 @@ def test_training_and_evaluation_see_the_same_view():
     np.testing.assert_array_equal(learner.observation_space.low, [-1.0, -1.0])
     obs, _ = evaluation.reset(seed=0)
     start = np.array([0.45, -0.32])  # maze-reach's start in metres
-    np.testing.assert_allclose(obs, affine(start, gymnasium.make(key.task).observation_space), atol=1e-6)
+    raw_space = gymnasium.make(key.task).observation_space
+    np.testing.assert_allclose(obs, affine(start, raw_space), atol=1e-6)
     raw = make_evaluation_env(key, {**settings, "rescale_observations": False})
     np.testing.assert_allclose(raw.reset(seed=0)[0], start, atol=1e-6)
 
 
 def test_every_table_that_rescales_has_bounded_observations():
     checked = 0
-    for (family, algo), settings in TABLE.items():
+    for (family, _algo), settings in TABLE.items():
         if not settings.get("rescale_observations"):
             continue
         for task in PLANAR:
