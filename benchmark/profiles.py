@@ -16,7 +16,7 @@ paper       the source paper's full grid: reach, push, maze-reach × {sparse, de
 full        ``paper`` plus MetaWorld and gymnasium-robotics tasks
 metaworld   the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} × PPO × 2 seeds
             at 102k steps: the part of ``full``'s MetaWorld block that 2 CPU cores train in
-            about 45 minutes (``full`` needs days there, see :data:`METAWORLD_PROFILE`)
+            about 80 minutes (``full`` needs days there, see :data:`METAWORLD_PROFILE`)
 ==========  ================================================================================
 
 Example:
@@ -294,10 +294,10 @@ METAWORLD_PROFILE = Profile(
     eval_episodes=10,
     caveats=(
         "a reduction of the full profile's MetaWorld block (500k steps × 5 seeds × PPO and SAC "
-        "× 5 entries) to what 2 CPU cores train in about 45 minutes: PPO trains MetaWorld at "
-        "about 1,300 steps/s on one core and SAC ([256, 256], one gradient step per step) at "
-        "about 50, so the full block would take days; 102k steps are 25 PPO updates, far "
-        "below the millions MetaWorld tasks usually need",
+        "× 5 entries) to what 2 CPU cores train in about 80 minutes (2.64 h of runs): PPO "
+        "trains MetaWorld at about 1,300 steps/s on one core and SAC ([256, 256], one gradient "
+        "step per step) at about 50, so the full block would take days; 102k steps are 25 PPO "
+        "updates, far below the millions MetaWorld tasks usually need",
         "observations are MetaWorld's raw ones (no finite bounds to rescale from)",
     ),
 )
