@@ -34,3 +34,6 @@ register_potential(
     gamma=0.99,
 )
 register_potential("h-star-geodesic", "planshape.baselines.heuristic:HStarGeodesic")
+
+# ---- control: the hand-crafted dense reward's distance as a potential (see goal_distance.py)
+register_potential("goal-distance", "planshape.baselines.goal_distance:GoalDistance")

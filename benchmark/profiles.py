@@ -35,8 +35,14 @@ from planshape.registration import task_spec
 
 PLANAR = ("planshape/Reach-v0", "planshape/Push-v0", "planshape/MazeReach-v0")
 PAPER_POTENTIALS = ("plan-based", "time-varying", "distance-varying")
+#: the source paper's granularities of the planar models
+PAPER_MODELS = ("single", "multi", "grid")
 #: planning-derived potentials beyond the paper, meaningful on the grid models
 PLANNING_POTENTIALS = ("plan-distance", "h-star", "h-star-geodesic")
+#: the grid models of the planar tasks (push also has one with diagonal, sliding pushes)
+GRID_MODELS = ("grid", "grid-diagonal")
+#: the control entry: the hand-crafted dense reward's distance as a potential
+CONTROL_POTENTIALS = ("goal-distance",)
 METAWORLD = tuple(
     f"planshape/MetaWorld-{name}-v3"
     for name in (
@@ -210,20 +216,36 @@ DEFAULT = Profile(
     name="default",
     description=(
         "reach, push, maze-reach × {sparse, dense, 3 potentials × 3 models} × PPO × 5 seeds, "
-        "plus SAC (tuned) on sparse, dense and the grid potentials × 2 seeds, plus the "
-        "planning-derived potentials (plan-distance, h-star, h-star-geodesic) on the grid "
-        "models × PPO × 5 seeds"
+        "plus SAC (tuned) on sparse, dense, the grid potentials and goal-distance × 2 seeds, "
+        "plus the planning-derived potentials (plan-distance, h-star, h-star-geodesic) on the "
+        "grid models and the goal-distance control × PPO × 5 seeds"
     ),
     blocks=(
-        Block(PLANAR, ("PPO",), tuple(range(5)), _PLANAR_BUDGETS),
+        Block(PLANAR, ("PPO",), tuple(range(5)), _PLANAR_BUDGETS, models=PAPER_MODELS),
         # two SAC seeds: a third took the profile past an hour on 2 cores
-        Block(PLANAR, ("SAC",), tuple(range(2)), _SAC_BUDGETS, models=("grid",)),
+        Block(
+            PLANAR,
+            ("SAC",),
+            tuple(range(2)),
+            _SAC_BUDGETS,
+            PAPER_POTENTIALS + CONTROL_POTENTIALS,
+            models=("grid",),
+        ),
         Block(
             PLANAR,
             ("PPO",),
             tuple(range(5)),
             _PLANAR_BUDGETS,
             PLANNING_POTENTIALS,
+            models=GRID_MODELS,
+            include_sparse_dense=False,
+        ),
+        Block(
+            PLANAR,
+            ("PPO",),
+            tuple(range(5)),
+            _PLANAR_BUDGETS,
+            CONTROL_POTENTIALS,
             models=("grid",),
             include_sparse_dense=False,
         ),
@@ -241,6 +263,9 @@ DEFAULT = Profile(
         "PPO and SAC see the observation rescaled from its bounds to [-1, 1] "
         "(rescale_observations, planshape.hyperparams); on raw metres no entry solved "
         "maze-reach",
+        "goal-distance is a control, not a planning-derived potential: the dense reward's own "
+        "distance used as a potential; where it also trails dense, the gap is what keeping "
+        "the optimal policy costs, not what the plan lacks",
     ),
 )
 
@@ -248,8 +273,20 @@ PAPER = Profile(
     name="paper",
     description="the source paper's grid: 3 tasks × 11 entries × PPO, SAC, SAC-default × 5 seeds",
     blocks=(
-        Block(PLANAR, ("PPO",), tuple(range(5)), {t: 2 * b for t, b in _PLANAR_BUDGETS.items()}),
-        Block(PLANAR, ("SAC", "SAC-default"), tuple(range(5)), {t: 30_000 for t in PLANAR}),
+        Block(
+            PLANAR,
+            ("PPO",),
+            tuple(range(5)),
+            {t: 2 * b for t, b in _PLANAR_BUDGETS.items()},
+            models=PAPER_MODELS,
+        ),
+        Block(
+            PLANAR,
+            ("SAC", "SAC-default"),
+            tuple(range(5)),
+            {t: 30_000 for t in PLANAR},
+            models=PAPER_MODELS,
+        ),
     ),
     eval_every=10_000,
     eval_episodes=20,

@@ -34,6 +34,7 @@ register_task(
             "single": "planshape.tasks.planar.abstract:push_single",
             "multi": "planshape.tasks.planar.abstract:push_multi",
             "grid": "planshape.tasks.planar.abstract:push_grid",
+            "grid-diagonal": "planshape.tasks.planar.abstract:push_grid_diagonal",
         },
         default_model="grid",
         max_episode_steps=40,

@@ -405,8 +405,21 @@ def maze_reach_grid() -> AbstractModel:
     return _navigation_grid("maze-reach", G.ee_start, G.maze_goal, walls=True)
 
 
-def push_grid_problem(grid: Grid, ee_start: Point, box_start: Point) -> str:
-    """The Sokoban-like push problem on ``grid`` (generated, not shipped)."""
+#: a push along ``d`` may slide the box one cell sideways: the box follows the end effector
+#: along the face it pushes, by friction (about 85 % of the end effector's sideways motion)
+_SLIDES = {False: (0,), True: (0, -1, 1)}
+
+
+def push_grid_problem(
+    grid: Grid, ee_start: Point, box_start: Point, *, diagonal: bool = False
+) -> str:
+    """The Sokoban-like push problem on ``grid`` (generated, not shipped).
+
+    With ``diagonal``, the end effector also moves between 8-adjacent cells, and a push from
+    the cell opposite the box may also slide the box one cell sideways (the end effector
+    moves diagonally and the box follows it along the pushed face by friction); the end
+    effector ends behind the box's new cell either way.
+    """
     names = _grid_names("push")
     rows, cols = grid.shape
     inside = {(r, c) for r in range(rows) for c in range(cols)}
@@ -415,15 +428,25 @@ def push_grid_problem(grid: Grid, ee_start: Point, box_start: Point) -> str:
         f"(robot_at {name[grid.cell_of(ee_start)]})",
         f"(object_at box {name[grid.cell_of(box_start)]})",
     ]
+    steps = ((-1, 0), (1, 0), (0, -1), (0, 1))
+    moves = steps + (((-1, -1), (-1, 1), (1, -1), (1, 1)) if diagonal else ())
     for r, c in sorted(inside):
-        for dr, dc in ((-1, 0), (1, 0), (0, -1), (0, 1)):
-            ahead, further = (r + dr, c + dc), (r + 2 * dr, c + 2 * dc)
+        for dr, dc in moves:
+            ahead = (r + dr, c + dc)
             if ahead in inside:
                 facts.append(f"(neighbors {name[(r, c)]} {name[ahead]})")
-            if ahead in inside and further in inside:
-                # end effector in (r, c) pushes the box from `ahead` to `further`
-                b, f = name[ahead], name[further]
-                facts.append(f"(push_line {name[(r, c)]} {b} {f} {b})")
+            if (dr, dc) not in steps:
+                continue  # the box is pushed from a face, never from a corner
+            for slide in _SLIDES[diagonal]:
+                # sideways is perpendicular to the push direction (dr, dc)
+                sr, sc = slide * dc, slide * dr
+                further = (ahead[0] + dr + sr, ahead[1] + dc + sc)
+                after = (ahead[0] + sr, ahead[1] + sc)
+                if ahead in inside and further in inside and after in inside:
+                    # end effector in (r, c) pushes the box from `ahead` to `further`
+                    facts.append(
+                        f"(push_line {name[(r, c)]} {name[ahead]} {name[further]} {name[after]})"
+                    )
     objects = " ".join(name[rc] for rc in sorted(inside))
     init = "\n         ".join(facts)
     return f"""(define (problem push-grid)
@@ -435,11 +458,18 @@ def push_grid_problem(grid: Grid, ee_start: Point, box_start: Point) -> str:
 """
 
 
-def push_grid(cell: float = CELL) -> AbstractModel:
+def push_grid(cell: float = CELL, *, diagonal: bool = False) -> AbstractModel:
     """Push's Sokoban-like grid model on cells of side ``cell`` (the registered model uses
-    :data:`CELL`; the invariance checker's toy uses coarser cells)."""
+    :data:`CELL`; the invariance checker's toy uses coarser cells); ``diagonal`` adds
+    8-adjacent moves and pushes that slide the box sideways (see :func:`push_grid_problem`)."""
     grid = Grid(G.box_goal, cell)
+    stem = f"push-grid{'-diagonal' if diagonal else ''}-{cell:g}"
     problem = generated_file(
-        f"push-grid-{cell:g}", push_grid_problem(grid, G.ee_start, G.box_start)
+        stem, push_grid_problem(grid, G.ee_start, G.box_start, diagonal=diagonal)
     )
     return _model("push", problem, [grid.places(_grid_names("push"))], _PUSH_ENTITIES)
+
+
+def push_grid_diagonal() -> AbstractModel:
+    """Push's grid model with diagonal moves and sliding pushes (``model="grid-diagonal"``)."""
+    return push_grid(CELL, diagonal=True)

@@ -1,0 +1,78 @@
+"""Goal-distance potential: the hand-crafted dense reward's distance, used as a potential.
+
+A control entry, not a planning-derived one: it reads only the positions and the goal, never the
+plan's intermediate subgoals. With the entities in the ``locate`` hook's order e1, …, em (the end
+effector, then the box) and g the place of the last one in the plan's final subgoal Ŝ[n],
+
+    φ = −(|e1 − e2| + … + |e(m−1) − em| + |em − g|) / d0,
+
+where d0 is the same chain measured at the places of Ŝ[0] (1 if that is 0), so φ ≈ −1 at the
+start and 0 at the goal. Each entity has to reach the next one (the end effector the box) and the
+last one its goal. On the planar tasks the numerator is exactly the distance the hand-crafted
+dense reward pays (reach and maze-reach: −|ee − goal|; push: −(|ee − box| + |box − goal|)), so
+``goal-distance/<model>`` is the dense reward made potential-based: it keeps the optimal policy
+of the sparse task, like every potential here, and separates two questions the leaderboard would
+otherwise mix, namely what the plan adds over the hand-crafted distance, and what keeping the
+optimal policy costs against the dense reward itself (which changes the task).
+
+Example:
+    >>> from planshape.potentials import ShapingContext
+    >>> from planshape.invariance.toys import PointGeometry
+    >>> geometry = PointGeometry({"a": (0, 0), "b": (0, 2), "c": (1, 2)})
+    >>> subgoals = [frozenset({("robot_at", p)}) for p in "abc"]
+    >>> ctx = ShapingContext(obs=np.array([1.0, 1.0]), progress=0, t=0, subgoals=subgoals,
+    ...                      geometry=geometry)
+    >>> round(GoalDistance()(ctx), 3)  # 1 m from c, which is sqrt(5) m from a
+    -0.447
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+from planshape.errors import PotentialError
+from planshape.potentials import Potential, ShapingContext, point_distance
+
+__all__ = ["GoalDistance", "chain_distance"]
+
+
+def chain_distance(positions: Mapping[str, Any], goal: Any) -> float:
+    """|e1 − e2| + … + |em − goal| over the entities of ``positions`` in their order.
+
+    Example:
+        >>> chain_distance({"ee": (0, 0), "box": (3, 4)}, (3, 5))
+        6.0
+    """
+    points = [*positions.values(), goal]
+    return sum(point_distance(a, b) for a, b in itertools.pairwise(points))
+
+
+class GoalDistance(Potential):
+    """φ = −(chain distance from the first entity through the others to the goal) / d0."""
+
+    def _goal(self, ctx: ShapingContext, subgoals: Sequence[Any]) -> tuple[Any, float]:
+        geometry = ctx.require_geometry(self.name)
+        final = geometry.locate(subgoals[-1])
+        order = list(geometry.positions(ctx.obs))
+        if not order or order[-1] not in final:
+            raise PotentialError(
+                f"potential {self.name!r}: the plan's final subgoal places no "
+                f"{order[-1] if order else 'entity'!r}, so there is no goal to measure to; "
+                "use it with a model whose goal places the last entity of the locate hook"
+            )
+        goal = final[order[-1]]
+        start = geometry.locate(subgoals[0])
+        if all(e in start for e in order):
+            d0 = chain_distance({e: start[e] for e in order}, goal)
+        else:
+            d0 = 0.0
+        return goal, d0 if d0 > 0 else 1.0
+
+    def potential(self, ctx: ShapingContext) -> float:
+        goal, d0 = self._goal(ctx, ctx.subgoals)
+        positions = ctx.require_geometry(self.name).positions(ctx.obs)
+        return -chain_distance(positions, np.asarray(goal, float)) / d0
