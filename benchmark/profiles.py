@@ -9,8 +9,9 @@ profile     what it runs
 ==========  ================================================================================
 smoke       reach, three entries, PPO, one seed, 4k steps (about a minute; a test runs it)
 default     the source paper's grid with PPO × 5 seeds, plus SAC on the main entries ×
-            2 seeds, plus the planning-derived potentials on the grid models × PPO × 5
-            seeds — what ``tox -e bench`` runs; about an hour on 2 cores
+            2 seeds, plus the planning-derived potentials on the grid models and the
+            goal-distance control × PPO × 5 seeds — what ``tox -e bench`` runs; about an
+            hour on 2 cores
 paper       the source paper's full grid: reach, push, maze-reach × {sparse, dense, 3
             potentials × 3 models} × PPO, SAC and SAC-default × 5 seeds
 full        ``paper`` plus MetaWorld and gymnasium-robotics tasks

@@ -11,6 +11,11 @@ Three granularities per task, following the source paper:
   touch a wall (grown by the end effector's radius) is not a neighbour, so the plan goes around.
   Push's grid model is Sokoban-like: the end effector pushes the box one cell from the cell
   opposite, and ends in the cell the box left.
+* ``grid-diagonal`` (push only): the same cells, with ``neighbors`` between 8-adjacent cells
+  and pushes that may also slide the box one cell sideways, as the box follows the end
+  effector along the pushed face by friction (about 85 % of its sideways motion); the end
+  effector ends behind the box's new cell. The plan pushes the box 6 times, diagonally
+  towards the goal, instead of 9 times with a walk around the box.
 
 Predicates are ``(robot_at ?p)`` — the end effector's centre is in place ``p`` — and, in push,
 ``(object_at ?b ?p)`` — the box's centre is in place ``p``. Waypoints are discs (radius

@@ -63,6 +63,36 @@ def test_maze_grid_plan_goes_around_the_walls():
     assert max(ys) > 0.15 and ys[-1] == pytest.approx(0.0)
 
 
+def test_push_diagonal_grid_slides_the_box_and_shortens_the_plan():
+    """grid-diagonal adds 8-adjacent moves and pushes that slide the box one cell sideways;
+    its plan pushes the box 6 times instead of 9 and never walks around it."""
+    from planshape.tasks.planar.abstract import Grid, push_grid_problem
+    from planshape.tasks.planar.geometry import GEOMETRY as G
+
+    grid = Grid(G.box_goal)
+    plain = push_grid_problem(grid, G.ee_start, G.box_start)
+    diagonal = push_grid_problem(grid, G.ee_start, G.box_start, diagonal=True)
+    # the end effector in cell (9, 2) pushes the box in (8, 2), its start: up, up-left, up-right
+    assert "(push_line cell_9_2 cell_8_2 cell_7_2 cell_8_2)" in plain
+    assert "cell_9_2 cell_8_2 cell_7_1" not in plain
+    for line in ("cell_7_2 cell_8_2", "cell_7_1 cell_8_1", "cell_7_3 cell_8_3"):
+        assert f"(push_line cell_9_2 cell_8_2 {line})" in diagonal
+    assert "(neighbors cell_10_2 cell_9_3)" in diagonal
+    assert "(neighbors cell_10_2 cell_9_3)" not in plain
+
+    lengths, pushes = {}, {}
+    for model in ("grid", "grid-diagonal"):
+        env = gymnasium.make("planshape/Push-v0", reward="shaped", model=model, gamma=0.99)
+        env.reset(seed=0)
+        geometry = env.get_wrapper_attr("geometry")
+        subgoals = env.get_wrapper_attr("progress").subgoals
+        boxes = [tuple(geometry.locate(s)["box"]) for s in subgoals]
+        lengths[model] = len(subgoals) - 1
+        pushes[model] = sum(a != b for a, b in itertools.pairwise(boxes))
+    assert lengths == {"grid": 16, "grid-diagonal": 9}
+    assert pushes == {"grid": 9, "grid-diagonal": 6}
+
+
 @pytest.mark.parametrize("factory", ["reach_grid", "maze_reach_grid", "push_grid"])
 def test_grid_cells_tile_the_plane_even_on_their_edges(factory: str) -> None:
     """Every float32 point near a cell edge is in exactly one cell, on the batch path and on
