@@ -37,3 +37,4 @@ register_potential("h-star-geodesic", "planshape.baselines.heuristic:HStarGeodes
 
 # ---- control: the hand-crafted dense reward's distance as a potential (see goal_distance.py)
 register_potential("goal-distance", "planshape.baselines.goal_distance:GoalDistance")
+register_potential("plan-path", "planshape.baselines.plan_path:PlanPath")

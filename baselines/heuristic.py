@@ -68,7 +68,7 @@ from planshape.errors import BadInputError, PotentialError
 from planshape.planning.grounding import ground_task
 from planshape.planning.relaxed import h_add, h_ff, h_max
 from planshape.planning.statespace import DEFAULT_MAX_STATES, GoalDistances
-from planshape.potentials import Potential, ShapingContext, point_distance
+from planshape.potentials import IdentityCache, Potential, ShapingContext, point_distance
 
 __all__ = ["HEURISTICS", "HStarGeodesic", "HeuristicPotential", "ModelBinding"]
 
@@ -199,22 +199,15 @@ class _BoundPotential(Potential):
     def __init__(self, scale: float = 1.0, max_states: int = DEFAULT_MAX_STATES):
         super().__init__(scale)
         self.max_states = int(max_states)
-        self._models: dict[int, tuple[ModelBinding, _PerModel]] = {}
-
-    def __getstate__(self) -> dict[str, Any]:  # caches hold ids of this process's objects
-        state = self.__dict__.copy()
-        state["_models"] = {}
-        return state
+        self._models: IdentityCache[_PerModel] = IdentityCache()
 
     def _model(self, ctx: ShapingContext) -> _PerModel:
         binding = bind_model(ctx, self.max_states)
-        hit = self._models.get(id(binding))
-        if hit is None or hit[0] is not binding:
-            model = _PerModel(binding)
-            self._prepare(model)
-            self._models[id(binding)] = (binding, model)
-            return model
-        return hit[1]
+        return self._models.get(binding, lambda: self._prepared(_PerModel(binding)))
+
+    def _prepared(self, model: _PerModel) -> _PerModel:
+        self._prepare(model)
+        return model
 
     def _prepare(self, model: _PerModel) -> None:
         """Fill in the per-model constants (normalizer, dead-end value, ...)."""

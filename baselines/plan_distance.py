@@ -43,7 +43,13 @@ from typing import Any
 
 import numpy as np
 
-from planshape.potentials import Geometry, Potential, ShapingContext, point_distance
+from planshape.potentials import (
+    Geometry,
+    IdentityCache,
+    Potential,
+    ShapingContext,
+    point_distance,
+)
 
 __all__ = ["PlanDistance", "step_targets"]
 
@@ -93,20 +99,11 @@ class PlanDistance(Potential):
         super().__init__(scale)
         self.tolerance = float(tolerance)
         self.normalize = normalize
-        self._tables: dict[int, tuple[Any, StepTargets]] = {}
-
-    def __getstate__(self) -> dict[str, Any]:  # the cache holds ids of this process's objects
-        state = self.__dict__.copy()
-        state["_tables"] = {}
-        return state
+        self._tables: IdentityCache[StepTargets] = IdentityCache()
 
     def _table(self, ctx: ShapingContext) -> StepTargets:
-        hit = self._tables.get(id(ctx.subgoals))
-        if hit is None or hit[0] is not ctx.subgoals:
-            table = step_targets(ctx.require_geometry(self.name), ctx.subgoals)
-            self._tables[id(ctx.subgoals)] = (ctx.subgoals, table)  # keeps it alive
-            return table
-        return hit[1]
+        geometry = ctx.require_geometry(self.name)
+        return self._tables.get(ctx.subgoals, lambda: step_targets(geometry, ctx.subgoals))
 
     def steps_left(self, ctx: ShapingContext) -> float:
         """n − j + d/unit, before normalizing and scaling."""

@@ -28,14 +28,43 @@ import math
 import os
 import sys
 from abc import ABC, abstractmethod
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, ClassVar, Protocol
+from typing import Any, ClassVar, Generic, Protocol, TypeVar
 
 import numpy as np
 
 from planshape.errors import BadInputError, PotentialError, UnknownIdError
 from planshape.planning.model import AbstractState
+
+_Value = TypeVar("_Value")
+
+
+class IdentityCache(Generic[_Value]):
+    """Values computed once per object, compared by identity: for potentials that precompute
+    something per plan (``ctx.subgoals``) or per bound model. Each key is kept alive, so its id
+    is never reused while cached, and the cache pickles empty (ids belong to one process).
+
+    Example:
+        >>> cache = IdentityCache()
+        >>> plan = [("a",), ("b",)]
+        >>> cache.get(plan, lambda: len(plan)), cache.get(plan, lambda: -1)
+        (2, 2)
+    """
+
+    def __init__(self) -> None:
+        self._items: dict[int, tuple[Any, _Value]] = {}
+
+    def get(self, key: Any, build: Callable[[], _Value]) -> _Value:
+        hit = self._items.get(id(key))
+        if hit is None or hit[0] is not key:
+            value = build()
+            self._items[id(key)] = (key, value)
+            return value
+        return hit[1]
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {"_items": {}}
 
 
 def point_distance(a: Any, b: Any) -> float:

@@ -39,7 +39,7 @@ PAPER_POTENTIALS = ("plan-based", "time-varying", "distance-varying")
 #: the source paper's granularities of the planar models
 PAPER_MODELS = ("single", "multi", "grid")
 #: planning-derived potentials beyond the paper, meaningful on the grid models
-PLANNING_POTENTIALS = ("plan-distance", "h-star", "h-star-geodesic")
+PLANNING_POTENTIALS = ("plan-distance", "plan-path", "h-star", "h-star-geodesic")
 #: the grid models of the planar tasks (push also has one with diagonal, sliding pushes)
 GRID_MODELS = ("grid", "grid-diagonal")
 #: the control entry: the hand-crafted dense reward's distance as a potential
@@ -217,9 +217,9 @@ DEFAULT = Profile(
     name="default",
     description=(
         "reach, push, maze-reach × {sparse, dense, 3 potentials × 3 models} × PPO × 5 seeds, "
-        "plus SAC (tuned) on sparse, dense, the grid potentials and goal-distance × 2 seeds, "
-        "plus the planning-derived potentials (plan-distance, h-star, h-star-geodesic) on the "
-        "grid models and the goal-distance control × PPO × 5 seeds"
+        "plus SAC (tuned) on sparse, dense, the grid potentials, plan-path and goal-distance × "
+        "2 seeds, plus the planning-derived potentials (plan-distance, plan-path, h-star, "
+        "h-star-geodesic) on the grid models and the goal-distance control × PPO × 5 seeds"
     ),
     blocks=(
         Block(PLANAR, ("PPO",), tuple(range(5)), _PLANAR_BUDGETS, models=PAPER_MODELS),
@@ -231,6 +231,15 @@ DEFAULT = Profile(
             _SAC_BUDGETS,
             PAPER_POTENTIALS + CONTROL_POTENTIALS,
             models=("grid",),
+        ),
+        Block(
+            PLANAR,
+            ("SAC",),
+            tuple(range(2)),
+            _SAC_BUDGETS,
+            ("plan-path",),
+            models=GRID_MODELS,
+            include_sparse_dense=False,
         ),
         Block(
             PLANAR,

@@ -1,0 +1,106 @@
+"""The plan-path potential: the chain to the last entity plus its way along the plan's path."""
+
+from __future__ import annotations
+
+import doctest
+
+import gymnasium
+import numpy as np
+import pytest
+
+import planshape  # noqa: F401  (registers the tasks)
+from planshape.baselines import plan_path
+from planshape.baselines.plan_path import PlanPath, Polyline
+from planshape.errors import PotentialError
+from planshape.invariance import check_potential
+from planshape.invariance.toys import PointGeometry
+from planshape.potentials import ShapingContext, make_potential
+
+
+def test_examples():
+    assert doctest.testmod(plan_path).failed == 0
+    assert isinstance(make_potential("plan-path"), PlanPath)
+
+
+def test_polyline_rest_by_hand():
+    path = Polyline([(0, 0), (0, 2), (1, 2)])
+    assert path.rest((0, 1)) == pytest.approx(2.0)  # on the path: 1 m up, 1 m right
+    assert path.rest((0, -1)) == pytest.approx(4.0)  # 1 m onto the start, then all 3 m
+    assert path.rest((-1, 0)) == pytest.approx(5**0.5 + 1)  # the corner is nearer than the start
+    assert path.rest((2, 2)) == pytest.approx(1.0)  # past the end: straight back to it
+    assert Polyline([(1, 1)]).rest((1, 2)) == 1.0
+    assert Polyline([(0, 0), (0, 0), (0, 1)]).rest((0, 0)) == pytest.approx(1.0)
+
+
+def shaped(task, model):
+    env = gymnasium.make(task, reward="shaped", potential="plan-path", model=model, gamma=1.0)
+    env.reset(seed=0)
+    return env
+
+
+def context(env, obs, progress=0, t=0):
+    return ShapingContext(
+        obs=np.asarray(obs, np.float32),
+        progress=progress,
+        t=t,
+        subgoals=env.get_wrapper_attr("progress").subgoals,
+        geometry=env.get_wrapper_attr("geometry"),
+    )
+
+
+@pytest.mark.parametrize("model", ["grid", "grid-diagonal", "multi"])
+def test_push_minus_one_at_the_plan_start_and_zero_at_the_goal(model):
+    env = shaped("planshape/Push-v0", model)
+    geometry = env.get_wrapper_attr("geometry")
+    subgoals = env.get_wrapper_attr("progress").subgoals
+    start = geometry.locate(subgoals[0])
+    goal = geometry.locate(subgoals[-1])["box"]
+    phi = make_potential("plan-path")
+    assert phi(context(env, [*start["ee"], *start["box"]])) == pytest.approx(-1.0)
+    assert phi(context(env, [*goal, *goal])) == pytest.approx(0.0, abs=1e-6)
+
+
+def test_a_function_of_the_observation_alone_and_lipschitz():
+    """No jump when a subgoal is reached or skipped: |Δφ| ≤ 2 Σ|Δp| / d0 on every step."""
+    env = shaped("planshape/Push-v0", "grid")
+    phi = make_potential("plan-path")
+    rng = np.random.default_rng(0)
+    obs = np.array([0.45, -0.3, 0.35, -0.1])  # Ŝ[0]'s places: φ = −1 there
+    assert phi(context(env, obs)) == pytest.approx(-1.0)
+    box_path = plan_path.entity_path(
+        env.get_wrapper_attr("geometry"), env.get_wrapper_attr("progress").subgoals, "box"
+    )
+    d0 = np.linalg.norm(obs[:2] - obs[2:]) + box_path.rest(obs[2:])
+    previous = -1.0
+    for _ in range(300):
+        step = rng.normal(0, 0.01, 4)
+        obs = obs + step
+        value = phi(context(env, obs, progress=int(rng.integers(0, 17)), t=int(rng.integers(99))))
+        assert value == phi(context(env, obs))
+        moved = np.linalg.norm(step[:2]) + np.linalg.norm(step[2:])
+        assert abs(value - previous) <= 2 * moved / d0 + 1e-6
+        previous = value
+
+
+def test_maze_reach_follows_the_plan_around_the_wall():
+    env = shaped("planshape/MazeReach-v0", "grid")
+    path = plan_path.entity_path(
+        env.get_wrapper_attr("geometry"), env.get_wrapper_attr("progress").subgoals, "ee"
+    )
+    assert path.points[:, 1].max() > 0.15  # over the walls' tops
+    phi = make_potential("plan-path")
+    start = path.points[0]
+    # further along the path is better, though straight-line closer to the goal is not
+    assert phi(context(env, path.points[len(path.points) // 2])) > phi(context(env, start))
+
+
+def test_no_place_for_the_last_entity_is_a_clear_error():
+    geometry = PointGeometry({"a": (0, 0)})
+    ctx = ShapingContext(np.zeros(2), 0, 0, [frozenset(), frozenset()], geometry)
+    with pytest.raises(PotentialError, match="plan-path.*places 'ee'"):
+        make_potential("plan-path")(ctx)
+
+
+def test_keeps_the_optimal_policy():
+    report = check_potential("plan-path", mdps=["maze-reach", "push", "random-episodic"])
+    assert report.preserved, [v.counterexample for v in report.verdicts if not v.preserved]
