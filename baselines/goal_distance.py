@@ -6,14 +6,16 @@ effector, then the box) and g the place of the last one in the plan's final subg
 
     φ = −(|e1 − e2| + … + |e(m−1) − em| + |em − g|) / d0,
 
-where d0 is the same chain measured at the places of Ŝ[0] (1 if that is 0), so φ ≈ −1 at the
-start and 0 at the goal. Each entity has to reach the next one (the end effector the box) and the
-last one its goal. On the planar tasks the numerator is exactly the distance the hand-crafted
-dense reward pays (reach and maze-reach: −|ee − goal|; push: −(|ee − box| + |box − goal|)), so
-``goal-distance/<model>`` is the dense reward made potential-based: it keeps the optimal policy
-of the sparse task, like every potential here, and separates two questions the leaderboard would
-otherwise mix, namely what the plan adds over the hand-crafted distance, and what keeping the
-optimal policy costs against the dense reward itself (which changes the task).
+where d0 is the same chain measured at the places of Ŝ[0] (1 m if that is 0 or Ŝ[0] does not
+place every entity), so φ ≈ −1 at the start and 0 at the goal. Each entity has to reach the next
+one (the end effector the box) and the last one its goal, so the entities must be positions in
+one frame (the geometry's ``shared_frame``) when there is more than one. On the planar tasks the
+numerator is exactly the distance the hand-crafted dense reward pays (reach and maze-reach:
+−|ee − goal|; push: −(|ee − box| + |box − goal|)), so ``goal-distance/<model>`` is the dense
+reward made potential-based: it keeps the optimal policy of the sparse task, like every
+potential here, and separates two questions the leaderboard would otherwise mix, namely what the
+plan adds over the hand-crafted distance, and what keeping the optimal policy costs against the
+dense reward itself (which changes the task).
 
 Example:
     >>> from planshape.potentials import ShapingContext
@@ -37,7 +39,7 @@ import numpy as np
 from planshape.errors import PotentialError
 from planshape.potentials import Potential, ShapingContext, point_distance
 
-__all__ = ["GoalDistance", "chain_distance"]
+__all__ = ["GoalDistance", "chain_distance", "chained_entities"]
 
 
 def chain_distance(positions: Mapping[str, Any], goal: Any) -> float:
@@ -51,13 +53,35 @@ def chain_distance(positions: Mapping[str, Any], goal: Any) -> float:
     return sum(point_distance(a, b) for a, b in itertools.pairwise(points))
 
 
+def chained_entities(geometry: Any, obs: Any, who: str) -> list[str]:
+    """The entities of ``geometry`` in the ``locate`` hook's order, checked to be chainable:
+    |e1 − e2| only means something when the entities are positions in one frame, which a
+    geometry declares with ``shared_frame = True`` (the planar tasks do; MetaWorld's and
+    Fetch's entities are displacements such as hand-to-puck, which do not chain).
+
+    Example:
+        >>> from planshape.invariance.toys import PointGeometry
+        >>> chained_entities(PointGeometry({}), np.zeros(2), "doc")
+        ['ee']
+    """
+    order = list(geometry.positions(obs))
+    if len(order) > 1 and not getattr(geometry, "shared_frame", False):
+        raise PotentialError(
+            f"potential {who!r} chains the distances between the entities {order}, but "
+            f"{type(geometry).__name__} does not declare them positions in one frame "
+            "(shared_frame = True); pick a potential that measures each entity to its own "
+            "target, such as plan-distance"
+        )
+    return order
+
+
 class GoalDistance(Potential):
     """φ = −(chain distance from the first entity through the others to the goal) / d0."""
 
     def _goal(self, ctx: ShapingContext, subgoals: Sequence[Any]) -> tuple[Any, float]:
         geometry = ctx.require_geometry(self.name)
         final = geometry.locate(subgoals[-1])
-        order = list(geometry.positions(ctx.obs))
+        order = chained_entities(geometry, ctx.obs, self.name)
         if not order or order[-1] not in final:
             raise PotentialError(
                 f"potential {self.name!r}: the plan's final subgoal places no "

@@ -11,7 +11,9 @@ e1, …, em the entities in that order,
 
 so each entity has to reach the next one (the end effector the box), and the last one has to
 get onto the plan's path and follow it to the goal; d0 is the same quantity at Ŝ[0]'s places
-(1 if that is 0), so φ ≈ −1 at the start and 0 at the goal. The way onto the path is a straight
+(the path's length if Ŝ[0] does not place every entity, 1 m if that is 0), so φ ≈ −1 at the
+start and 0 at the goal. The entities must be positions in one frame (the geometry's
+``shared_frame``) when there is more than one. The way onto the path is a straight
 line to its nearest profitable point, which may lie on a later segment: off the path, walls
 are not respected (the grid models' paths go around them; h-star-geodesic respects them
 everywhere).
@@ -41,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from planshape.baselines.goal_distance import chain_distance
+from planshape.baselines.goal_distance import chain_distance, chained_entities
 from planshape.errors import PotentialError
 from planshape.potentials import Geometry, IdentityCache, Potential, ShapingContext
 
@@ -106,7 +108,7 @@ class PlanPath(Potential):
         self._paths: IdentityCache[_Prepared] = IdentityCache()
 
     def _prepare(self, ctx: ShapingContext, geometry: Geometry) -> _Prepared:
-        order = list(geometry.positions(ctx.obs))
+        order = chained_entities(geometry, ctx.obs, self.name)
         path = entity_path(geometry, ctx.subgoals, order[-1])
         start = geometry.locate(ctx.subgoals[0])
         if all(e in start for e in order):

@@ -89,7 +89,10 @@ class Geometry(Protocol):
 
     ``locate(subgoal)`` gives, for each entity the subgoal constrains (``"ee"``, ``"box"``, …),
     the coordinates it must be at; the mapping's order is the priority order. ``positions(obs)``
-    gives every entity's current coordinates in an observation.
+    gives every entity's current coordinates in an observation. A geometry whose entities
+    are positions in one frame (so that the distance between two entities means something)
+    sets ``shared_frame = True``; potentials that chain entities (``goal-distance``,
+    ``plan-path``) need it when there is more than one entity.
     """
 
     def locate(self, subgoal: AbstractState) -> Mapping[str, np.ndarray]: ...

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -50,6 +50,8 @@ class DisplacementGeometry:
 
     displacements: Mapping[str, Displacement]
     targets: Mapping[str, tuple[str, Sequence[float]]]
+    #: displacements are differences of points, not points of one frame: they do not chain
+    shared_frame: ClassVar[bool] = False
 
     def __post_init__(self) -> None:
         unknown = sorted({e for e, _ in self.targets.values()} - set(self.displacements))

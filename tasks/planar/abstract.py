@@ -186,7 +186,10 @@ class InPlace:
 
 class PlanarGeometryHooks:
     """``locate``/``positions`` for the distance potentials: the end effector first, then the
-    box (the source paper's priority)."""
+    box (the source paper's priority); both are positions in the table's frame."""
+
+    #: the entities are positions in one frame, so |ee − box| means something
+    shared_frame = True
 
     def __init__(self, places: Sequence[Places], entities: Mapping[str, tuple[str, int, slice]]):
         self.places = places

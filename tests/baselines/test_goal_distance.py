@@ -64,3 +64,29 @@ def test_a_goal_without_the_last_entity_is_a_clear_error():
 def test_keeps_the_optimal_policy():
     report = check_potential("goal-distance", mdps=["maze-reach", "push", "random-episodic"])
     assert report.preserved, [v.counterexample for v in report.verdicts if not v.preserved]
+
+
+@pytest.mark.parametrize("potential", ["goal-distance", "plan-path"])
+def test_displacement_entities_do_not_chain(potential):
+    """MetaWorld's and Fetch's entities are displacements (hand-to-puck, puck-to-goal): the
+    distance between two of them means nothing, so a chaining potential refuses them; with a
+    single entity there is nothing to chain."""
+    from planshape.tasks.displacement import DisplacementGeometry
+
+    def hand_to_puck(obs):
+        return obs[0:2] - obs[2:4]
+
+    def puck_to_goal(obs):
+        return obs[2:4]
+
+    subgoals = [frozenset({("near", "hand")}), frozenset({("near", "hand"), ("at", "puck")})]
+    two = DisplacementGeometry(
+        {"hand-to-puck": hand_to_puck, "puck-to-goal": puck_to_goal},
+        {"near": ("hand-to-puck", (0, 0)), "at": ("puck-to-goal", (0, 0))},
+    )
+    ctx = ShapingContext(np.array([1.0, 0, 0, 1]), 0, 0, subgoals, two)
+    with pytest.raises(PotentialError, match=f"{potential}.*shared_frame = True"):
+        make_potential(potential)(ctx)
+    one = DisplacementGeometry({"puck-to-goal": puck_to_goal}, {"at": ("puck-to-goal", (0, 0))})
+    ctx = ShapingContext(np.array([1.0, 0, 0, 2]), 0, 0, subgoals, one)
+    assert make_potential(potential)(ctx) == -2.0  # no place at Ŝ[0]: d0 = 1 m
