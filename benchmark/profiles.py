@@ -35,6 +35,7 @@ from planshape.errors import UnknownIdError
 from planshape.registration import task_spec
 
 PLANAR = ("planshape/Reach-v0", "planshape/Push-v0", "planshape/MazeReach-v0")
+PUSH = ("planshape/Push-v0",)
 PAPER_POTENTIALS = ("plan-based", "time-varying", "distance-varying")
 #: the source paper's granularities of the planar models
 PAPER_MODELS = ("single", "multi", "grid")
@@ -218,8 +219,9 @@ DEFAULT = Profile(
     description=(
         "reach, push, maze-reach × {sparse, dense, 3 potentials × 3 models} × PPO × 5 seeds, "
         "plus SAC (tuned) on sparse, dense, the grid potentials, plan-path and goal-distance × "
-        "2 seeds, plus the planning-derived potentials (plan-distance, plan-path, h-star, "
-        "h-star-geodesic) on the grid models and the goal-distance control × PPO × 5 seeds"
+        "2 seeds (5 on push for sparse, dense, plan-path and goal-distance), plus the "
+        "planning-derived potentials (plan-distance, plan-path, h-star, h-star-geodesic) on "
+        "the grid models and the goal-distance control × PPO × 5 seeds"
     ),
     blocks=(
         Block(PLANAR, ("PPO",), tuple(range(5)), _PLANAR_BUDGETS, models=PAPER_MODELS),
@@ -236,6 +238,17 @@ DEFAULT = Profile(
             PLANAR,
             ("SAC",),
             tuple(range(2)),
+            _SAC_BUDGETS,
+            ("plan-path",),
+            models=GRID_MODELS,
+            include_sparse_dense=False,
+        ),
+        # push with SAC is where a potential matches dense: 5 seeds for that comparison
+        Block(PUSH, ("SAC",), tuple(range(5)), _SAC_BUDGETS, CONTROL_POTENTIALS, models=("grid",)),
+        Block(
+            PUSH,
+            ("SAC",),
+            tuple(range(5)),
             _SAC_BUDGETS,
             ("plan-path",),
             models=GRID_MODELS,
