@@ -9,9 +9,9 @@ profile     what it runs
 ==========  ================================================================================
 smoke       reach, three entries, PPO, one seed, 4k steps (about a minute; a test runs it)
 default     the source paper's grid with PPO × 5 seeds, plus SAC on the main entries ×
-            2 seeds, plus the planning-derived potentials on the grid models and the
-            goal-distance control × PPO × 5 seeds — what ``tox -e bench`` runs; about an
-            hour on 2 cores
+            2 seeds (5 on push), plus the planning-derived potentials on the grid models and
+            the goal-distance control × PPO × 5 seeds — what ``tox -e bench`` runs; 3.1 h
+            of runs, about 95 minutes on 2 cores
 paper       the source paper's full grid: reach, push, maze-reach × {sparse, dense, 3
             potentials × 3 models} × PPO, SAC and SAC-default × 5 seeds
 full        ``paper`` plus MetaWorld and gymnasium-robotics tasks
@@ -225,7 +225,7 @@ DEFAULT = Profile(
     ),
     blocks=(
         Block(PLANAR, ("PPO",), tuple(range(5)), _PLANAR_BUDGETS, models=PAPER_MODELS),
-        # two SAC seeds: a third took the profile past an hour on 2 cores
+        # two SAC seeds (five on push, below): SAC runs take 1–2 minutes each on a core
         Block(
             PLANAR,
             ("SAC",),
@@ -277,7 +277,7 @@ DEFAULT = Profile(
     eval_episodes=10,
     caveats=(
         "SAC runs get smaller budgets than PPO (SAC takes one gradient step per environment "
-        "step; on 2 CPU cores its budget is what fits in the hour)",
+        "step; on 2 CPU cores these budgets keep the profile near an hour and a half)",
         "every potential's φ is multiplied by shaping_scale = 1/(1 − γ) = 100 (planshape."
         "hyperparams); the source paper tuned a multiplier per potential by hand, this "
         "benchmark applies one rule to every entry",
