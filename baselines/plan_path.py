@@ -38,6 +38,7 @@ Example:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -66,23 +67,47 @@ class Polyline:
         self.points = np.asarray(points, float)
         if len(self.points) == 0:
             raise ValueError("a path needs at least one point")
-        self._starts = self.points[:-1]
-        self._steps = np.diff(self.points, axis=0)
-        self._lengths = np.linalg.norm(self._steps, axis=1)
+        lengths = np.linalg.norm(np.diff(self.points, axis=0), axis=1)
         # the length of the path after each segment's end
-        self._after = np.concatenate([np.cumsum(self._lengths[::-1])[::-1][1:], [0.0]])
-        self.length = float(self._lengths.sum())
+        after = np.concatenate([np.cumsum(lengths[::-1])[::-1][1:], [0.0]])[: len(lengths)]
+        self.length = float(lengths.sum())
+        # per segment, in plain floats (φ runs on every step; numpy is slow on 2-vectors):
+        # start, step, squared length, length, length after its end
+        self._segments = [
+            (a.tolist(), (b - a).tolist(), float(n * n), float(n), float(rest))
+            for a, b, n, rest in zip(self.points[:-1], self.points[1:], lengths, after, strict=True)
+        ]
+        self._first = self.points[0].tolist()
 
     def rest(self, x: Any) -> float:
         """min over points q of the path of |x − q| + the path's length after q."""
-        x = np.asarray(x, float)
-        if len(self._steps) == 0:
-            return float(np.linalg.norm(x - self.points[0]))
-        squared = np.maximum(self._lengths**2, 1e-300)
-        t = np.clip(np.einsum("ij,ij->i", x - self._starts, self._steps) / squared, 0.0, 1.0)
-        nearest = self._starts + t[:, None] * self._steps
-        off = np.linalg.norm(x - nearest, axis=1)
-        return float(np.min(off + (1.0 - t) * self._lengths + self._after))
+        x = x.tolist() if isinstance(x, np.ndarray) else [float(v) for v in x]
+        if not self._segments:
+            return math.dist(x, self._first)
+        if len(x) != 2:
+            return self._rest_any(np.asarray(x, float))
+        px, py = x
+        best = math.inf
+        for (ax, ay), (dx, dy), squared, length, after in self._segments:
+            ox, oy = px - ax, py - ay
+            t = (ox * dx + oy * dy) / squared if squared else 0.0
+            t = 0.0 if t < 0.0 else 1.0 if t > 1.0 else t
+            value = math.hypot(ox - t * dx, oy - t * dy) + (1.0 - t) * length + after
+            if value < best:
+                best = value
+        return best
+
+    def _rest_any(self, x: np.ndarray) -> float:
+        """:meth:`rest` in any dimension, with numpy."""
+        starts = self.points[:-1]
+        steps = np.diff(self.points, axis=0)
+        squared, lengths, after = (np.array([s[k] for s in self._segments]) for k in (2, 3, 4))
+        projected = np.einsum("ij,ij->i", x - starts, steps)
+        t = np.clip(
+            np.divide(projected, squared, out=np.zeros_like(squared), where=squared > 0), 0, 1
+        )
+        off = np.linalg.norm(x - (starts + t[:, None] * steps), axis=1)
+        return float(np.min(off + (1.0 - t) * lengths + after))
 
 
 def entity_path(geometry: Geometry, subgoals: Sequence[Any], entity: str) -> Polyline:

@@ -24,6 +24,9 @@ CASES = [
     ("planshape/Reach-v0", "distance-varying", "grid"),
     ("planshape/Push-v0", "plan-based", "grid"),
     ("planshape/Push-v0", "distance-varying", "multi"),
+    ("planshape/Push-v0", "plan-distance", "grid-diagonal"),
+    ("planshape/Push-v0", "plan-path", "grid-diagonal"),
+    ("planshape/Push-v0", "goal-distance", "grid"),
     ("planshape/MazeReach-v0", "time-varying", "grid"),
     ("planshape/MetaWorld-pick-place-v3", "plan-based", "stages"),
     ("planshape/FetchPush-v4", "distance-varying", "stages"),
@@ -72,11 +75,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--repeats", type=int, default=5, help="interleaved repeats")
     args = parser.parse_args(argv)
     print("shaping overhead (median of interleaved repeats, same actions)")
-    print(f"{'task':34s} {'potential':17s} {'model':6s} {'plain µs':>9s} {'shaped µs':>10s} ratio")
+    print(f"{'task':34s} {'potential':17s} {'model':13s} {'plain µs':>9s} {'shaped µs':>10s} ratio")
     rows = [measure(*case, args.steps, args.repeats) for case in CASES]
     for r in rows:
         print(
-            f"{r['task']:34s} {r['potential']:17s} {r['model']:6s} {r['plain_us']:9.1f} "
+            f"{r['task']:34s} {r['potential']:17s} {r['model']:13s} {r['plain_us']:9.1f} "
             f"{r['shaped_us']:10.1f} {r['ratio']:5.2f}"
         )
     for r in rows:

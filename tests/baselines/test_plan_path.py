@@ -32,6 +32,18 @@ def test_polyline_rest_by_hand():
     assert Polyline([(0, 0), (0, 0), (0, 1)]).rest((0, 0)) == pytest.approx(1.0)
 
 
+def test_the_plane_fast_path_agrees_with_numpy_in_any_dimension():
+    rng = np.random.default_rng(1)
+    for _ in range(50):
+        points = rng.uniform(-1, 1, (int(rng.integers(2, 8)), 2))
+        points[1] = points[0]  # a zero-length segment too
+        path = Polyline(points)
+        x = rng.uniform(-1.5, 1.5, 2)
+        assert path.rest(x) == pytest.approx(path._rest_any(x), abs=1e-12)
+        lifted = Polyline(np.c_[points, np.zeros(len(points))])  # the same path in 3-D
+        assert lifted.rest([*x, 0.0]) == pytest.approx(path.rest(x), abs=1e-12)
+
+
 def shaped(task, model):
     env = gymnasium.make(task, reward="shaped", potential="plan-path", model=model, gamma=1.0)
     env.reset(seed=0)
