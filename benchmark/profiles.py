@@ -214,6 +214,21 @@ _SAC_BUDGETS = {
     "planshape/MazeReach-v0": 15_000,
 }
 
+
+def _shaped_only(
+    tasks: Sequence[str],
+    algo: str,
+    seeds: int,
+    budgets: Mapping[str, int],
+    potentials: Sequence[str],
+    models: Sequence[str],
+) -> Block:
+    """A block of shaped entries only (its sparse and dense runs are in another block)."""
+    return Block(
+        tasks, (algo,), tuple(range(seeds)), budgets, potentials, models, include_sparse_dense=False
+    )
+
+
 DEFAULT = Profile(
     name="default",
     description=(
@@ -234,44 +249,12 @@ DEFAULT = Profile(
             PAPER_POTENTIALS + CONTROL_POTENTIALS,
             models=("grid",),
         ),
-        Block(
-            PLANAR,
-            ("SAC",),
-            tuple(range(2)),
-            _SAC_BUDGETS,
-            ("plan-path",),
-            models=GRID_MODELS,
-            include_sparse_dense=False,
-        ),
+        _shaped_only(PLANAR, "SAC", 2, _SAC_BUDGETS, ("plan-path",), GRID_MODELS),
         # push with SAC is where a potential matches dense: 5 seeds for that comparison
         Block(PUSH, ("SAC",), tuple(range(5)), _SAC_BUDGETS, CONTROL_POTENTIALS, models=("grid",)),
-        Block(
-            PUSH,
-            ("SAC",),
-            tuple(range(5)),
-            _SAC_BUDGETS,
-            ("plan-path",),
-            models=GRID_MODELS,
-            include_sparse_dense=False,
-        ),
-        Block(
-            PLANAR,
-            ("PPO",),
-            tuple(range(5)),
-            _PLANAR_BUDGETS,
-            PLANNING_POTENTIALS,
-            models=GRID_MODELS,
-            include_sparse_dense=False,
-        ),
-        Block(
-            PLANAR,
-            ("PPO",),
-            tuple(range(5)),
-            _PLANAR_BUDGETS,
-            CONTROL_POTENTIALS,
-            models=("grid",),
-            include_sparse_dense=False,
-        ),
+        _shaped_only(PUSH, "SAC", 5, _SAC_BUDGETS, ("plan-path",), GRID_MODELS),
+        _shaped_only(PLANAR, "PPO", 5, _PLANAR_BUDGETS, PLANNING_POTENTIALS, GRID_MODELS),
+        _shaped_only(PLANAR, "PPO", 5, _PLANAR_BUDGETS, CONTROL_POTENTIALS, ("grid",)),
     ),
     eval_every=10_000,
     eval_episodes=10,

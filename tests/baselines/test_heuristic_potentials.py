@@ -28,7 +28,7 @@ HEURISTIC_IDS = [
     "h-star-discounted",
     "h-star-geodesic",
 ]
-NEW_IDS = ["plan-distance", *HEURISTIC_IDS]
+NEW_IDS = ["plan-distance", "plan-path", "goal-distance", *HEURISTIC_IDS]
 
 
 def maze():
