@@ -31,13 +31,13 @@ Example:
 from __future__ import annotations
 
 import itertools
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
 from planshape.errors import PotentialError
-from planshape.potentials import Potential, ShapingContext, point_distance
+from planshape.potentials import IdentityCache, Potential, ShapingContext, point_distance
 
 __all__ = ["GoalDistance", "chain_distance", "chained_entities"]
 
@@ -78,8 +78,13 @@ def chained_entities(geometry: Any, obs: Any, who: str) -> list[str]:
 class GoalDistance(Potential):
     """φ = −(chain distance from the first entity through the others to the goal) / d0."""
 
-    def _goal(self, ctx: ShapingContext, subgoals: Sequence[Any]) -> tuple[Any, float]:
-        geometry = ctx.require_geometry(self.name)
+    def __init__(self, scale: float = 1.0):
+        super().__init__(scale)
+        self._goals: IdentityCache[tuple[list[float], float]] = IdentityCache()
+
+    def _goal(self, ctx: ShapingContext, geometry: Any) -> tuple[list[float], float]:
+        """The last entity's place in Ŝ[n] and d0, once per plan."""
+        subgoals = ctx.subgoals
         final = geometry.locate(subgoals[-1])
         order = chained_entities(geometry, ctx.obs, self.name)
         if not order or order[-1] not in final:
@@ -88,7 +93,7 @@ class GoalDistance(Potential):
                 f"{order[-1] if order else 'entity'!r}, so there is no goal to measure to; "
                 "use it with a model whose goal places the last entity of the locate hook"
             )
-        goal = final[order[-1]]
+        goal = np.asarray(final[order[-1]], float).tolist()
         start = geometry.locate(subgoals[0])
         if all(e in start for e in order):
             d0 = chain_distance({e: start[e] for e in order}, goal)
@@ -97,6 +102,6 @@ class GoalDistance(Potential):
         return goal, d0 if d0 > 0 else 1.0
 
     def potential(self, ctx: ShapingContext) -> float:
-        goal, d0 = self._goal(ctx, ctx.subgoals)
-        positions = ctx.require_geometry(self.name).positions(ctx.obs)
-        return -chain_distance(positions, np.asarray(goal, float)) / d0
+        geometry = ctx.require_geometry(self.name)
+        goal, d0 = self._goals.get(ctx.subgoals, lambda: self._goal(ctx, geometry))
+        return -chain_distance(geometry.positions(ctx.obs), goal) / d0
