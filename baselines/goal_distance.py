@@ -30,78 +30,28 @@ Example:
 
 from __future__ import annotations
 
-import itertools
-from collections.abc import Mapping
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
+from planshape.baselines.plan_path import PlanPath, Polyline, chain_distance, chained_entities
 from planshape.errors import PotentialError
-from planshape.potentials import IdentityCache, Potential, ShapingContext, point_distance
+from planshape.potentials import Geometry
 
 __all__ = ["GoalDistance", "chain_distance", "chained_entities"]
 
 
-def chain_distance(positions: Mapping[str, Any], goal: Any) -> float:
-    """|e1 − e2| + … + |em − goal| over the entities of ``positions`` in their order.
+class GoalDistance(PlanPath):
+    """φ = −(chain distance from the first entity through the others to the goal) / d0: a
+    :class:`PlanPath` whose path is the goal alone."""
 
-    Example:
-        >>> chain_distance({"ee": (0, 0), "box": (3, 4)}, (3, 5))
-        6.0
-    """
-    points = [*positions.values(), goal]
-    return sum(point_distance(a, b) for a, b in itertools.pairwise(points))
-
-
-def chained_entities(geometry: Any, obs: Any, who: str) -> list[str]:
-    """The entities of ``geometry`` in the ``locate`` hook's order, checked to be chainable:
-    |e1 − e2| only means something when the entities are positions in one frame, which a
-    geometry declares with ``shared_frame = True`` (the planar tasks do; MetaWorld's and
-    Fetch's entities are displacements such as hand-to-puck, which do not chain).
-
-    Example:
-        >>> from planshape.invariance.toys import PointGeometry
-        >>> chained_entities(PointGeometry({}), np.zeros(2), "doc")
-        ['ee']
-    """
-    order = list(geometry.positions(obs))
-    if len(order) > 1 and not getattr(geometry, "shared_frame", False):
-        raise PotentialError(
-            f"potential {who!r} chains the distances between the entities {order}, but "
-            f"{type(geometry).__name__} does not declare them positions in one frame "
-            "(shared_frame = True); pick a potential that measures each entity to its own "
-            "target, such as plan-distance"
-        )
-    return order
-
-
-class GoalDistance(Potential):
-    """φ = −(chain distance from the first entity through the others to the goal) / d0."""
-
-    def __init__(self, scale: float = 1.0):
-        super().__init__(scale)
-        self._goals: IdentityCache[tuple[list[float], float]] = IdentityCache()
-
-    def _goal(self, ctx: ShapingContext, geometry: Any) -> tuple[list[float], float]:
-        """The last entity's place in Ŝ[n] and d0, once per plan."""
-        subgoals = ctx.subgoals
+    def _path(self, geometry: Geometry, subgoals: Sequence[Any], entity: str) -> Polyline:
         final = geometry.locate(subgoals[-1])
-        order = chained_entities(geometry, ctx.obs, self.name)
-        if not order or order[-1] not in final:
+        if entity not in final:
             raise PotentialError(
-                f"potential {self.name!r}: the plan's final subgoal places no "
-                f"{order[-1] if order else 'entity'!r}, so there is no goal to measure to; "
-                "use it with a model whose goal places the last entity of the locate hook"
+                f"potential {self.name!r}: the plan's final subgoal places no {entity!r}, so "
+                "there is no goal to measure to; use it with a model whose goal places the "
+                "last entity of the locate hook"
             )
-        goal = np.asarray(final[order[-1]], float).tolist()
-        start = geometry.locate(subgoals[0])
-        if all(e in start for e in order):
-            d0 = chain_distance({e: start[e] for e in order}, goal)
-        else:
-            d0 = 0.0
-        return goal, d0 if d0 > 0 else 1.0
-
-    def potential(self, ctx: ShapingContext) -> float:
-        geometry = ctx.require_geometry(self.name)
-        goal, d0 = self._goals.get(ctx.subgoals, lambda: self._goal(ctx, geometry))
-        return -chain_distance(geometry.positions(ctx.obs), goal) / d0
+        return Polyline([np.asarray(final[entity], float)])

@@ -38,20 +38,59 @@ Example:
 
 from __future__ import annotations
 
+import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
-from planshape.baselines.goal_distance import chain_distance, chained_entities
 from planshape.errors import PotentialError
-from planshape.potentials import Geometry, IdentityCache, Potential, ShapingContext
+from planshape.potentials import (
+    Geometry,
+    IdentityCache,
+    Potential,
+    ShapingContext,
+    point_distance,
+)
 
-__all__ = ["PlanPath", "Polyline", "entity_path"]
+__all__ = ["PlanPath", "Polyline", "chain_distance", "chained_entities", "entity_path"]
 
 #: per plan: the entities in the locate hook's order, the last one's path, d0
 _Prepared = tuple[list[str], "Polyline", float]
+
+
+def chain_distance(positions: Mapping[str, Any], goal: Any) -> float:
+    """|e1 − e2| + … + |em − goal| over the entities of ``positions`` in their order.
+
+    Example:
+        >>> chain_distance({"ee": (0, 0), "box": (3, 4)}, (3, 5))
+        6.0
+    """
+    points = [*positions.values(), goal]
+    return sum(point_distance(a, b) for a, b in itertools.pairwise(points))
+
+
+def chained_entities(geometry: Any, obs: Any, who: str) -> list[str]:
+    """The entities of ``geometry`` in the ``locate`` hook's order, checked to be chainable:
+    |e1 − e2| only means something when the entities are positions in one frame, which a
+    geometry declares with ``shared_frame = True`` (the planar tasks do; MetaWorld's and
+    Fetch's entities are displacements such as hand-to-puck, which do not chain).
+
+    Example:
+        >>> from planshape.invariance.toys import PointGeometry
+        >>> chained_entities(PointGeometry({}), np.zeros(2), "doc")
+        ['ee']
+    """
+    order = list(geometry.positions(obs))
+    if len(order) > 1 and not getattr(geometry, "shared_frame", False):
+        raise PotentialError(
+            f"potential {who!r} chains the distances between the entities {order}, but "
+            f"{type(geometry).__name__} does not declare them positions in one frame "
+            "(shared_frame = True); pick a potential that measures each entity to its own "
+            "target, such as plan-distance"
+        )
+    return order
 
 
 class Polyline:
@@ -71,6 +110,7 @@ class Polyline:
         # the length of the path after each segment's end
         after = np.concatenate([np.cumsum(lengths[::-1])[::-1][1:], [0.0]])[: len(lengths)]
         self.length = float(lengths.sum())
+        self._lengths, self._after = lengths, after
         # per segment, in plain floats (φ runs on every step; numpy is slow on 2-vectors):
         # start, step, squared length, length, length after its end
         self._segments = [
@@ -101,13 +141,13 @@ class Polyline:
         """:meth:`rest` in any dimension, with numpy."""
         starts = self.points[:-1]
         steps = np.diff(self.points, axis=0)
-        squared, lengths, after = (np.array([s[k] for s in self._segments]) for k in (2, 3, 4))
+        lengths, squared = self._lengths, self._lengths**2
         projected = np.einsum("ij,ij->i", x - starts, steps)
         t = np.clip(
             np.divide(projected, squared, out=np.zeros_like(squared), where=squared > 0), 0, 1
         )
         off = np.linalg.norm(x - (starts + t[:, None] * steps), axis=1)
-        return float(np.min(off + (1.0 - t) * lengths + after))
+        return float(np.min(off + (1.0 - t) * lengths + self._after))
 
 
 def entity_path(geometry: Geometry, subgoals: Sequence[Any], entity: str) -> Polyline:
@@ -132,9 +172,13 @@ class PlanPath(Potential):
         super().__init__(scale)
         self._paths: IdentityCache[_Prepared] = IdentityCache()
 
+    def _path(self, geometry: Geometry, subgoals: Sequence[Any], entity: str) -> Polyline:
+        """The path the last entity has to follow: its places over the plan."""
+        return entity_path(geometry, subgoals, entity)
+
     def _prepare(self, ctx: ShapingContext, geometry: Geometry) -> _Prepared:
         order = chained_entities(geometry, ctx.obs, self.name)
-        path = entity_path(geometry, ctx.subgoals, order[-1])
+        path = self._path(geometry, ctx.subgoals, order[-1])
         start = geometry.locate(ctx.subgoals[0])
         if all(e in start for e in order):
             last = start[order[-1]]
