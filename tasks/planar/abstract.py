@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -46,7 +46,7 @@ from planshape.planning.model import AbstractState
 from planshape.regions import Lattice, RegionIndex
 from planshape.registration import AbstractModel
 from planshape.tasks.common import generated_file, pddl_file
-from planshape.tasks.planar.geometry import GEOMETRY, Point
+from planshape.tasks.planar.geometry import GEOMETRY, Point, Rect
 
 #: side of a grid cell (m): 2.5 steps of the end effector, and the box's contact distance.
 CELL = 0.05
@@ -64,6 +64,9 @@ class Places:
 
     ``grid=True`` makes the squares (of side ``2 · size``) the cells of a grid that tiles the
     plane: every point is in exactly one cell (see :class:`planshape.regions.Lattice`).
+    ``alternatives`` gives a place more discs than its centre: the place holds in any of them
+    (the paper's reaching subgoals are "either end of the wall"); its centre, the first disc,
+    is where the distance potentials measure to, as the paper's distance potential does.
 
     Example:
         >>> places = Places({"a": (0.0, 0.0), "b": (1.0, 0.0)}, size=0.1)
@@ -72,20 +75,34 @@ class Places:
         >>> cells = Places({"a": (0.0, 0.0), "b": (0.1, 0.0)}, 0.05, square=True, grid=True)
         >>> cells.contains(np.array([[0.05, 0.0], [0.15, 0.0]]), cells.index(["a", "b"])).tolist()
         [[True, False], [False, True]]
+        >>> ends = Places({"end": (0.0, 0.0)}, 0.1, alternatives={"end": ((1.0, 0.0),)})
+        >>> ends.containing(1.05, 0.0), ends.contains(np.array([1.05, 0.0]), ends.index(["end"]))
+        ([0], array([ True]))
     """
 
     centres: Mapping[str, Point]
     size: float
     square: bool = False
     grid: bool = False
+    alternatives: Mapping[str, tuple[Point, ...]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.grid and not self.square:
             raise ValueError("grid places are square cells; pass square=True")
+        if self.grid and self.alternatives:
+            raise ValueError("grid cells tile the plane; they have no alternative discs")
         names = tuple(self.centres)
         object.__setattr__(self, "_names", {n: i for i, n in enumerate(names)})
         object.__setattr__(self, "_xy", np.array([self.centres[n] for n in names], float))
-        xy = self._xy.tolist()  # type: ignore[attr-defined]
+        # every region of the table: each place's centre, then the alternatives, with the
+        # position of the place each one belongs to
+        owners = list(range(len(names)))
+        extra = [(self._names[n], p) for n, ps in self.alternatives.items() for p in ps]  # type: ignore[attr-defined]
+        owners += [i for i, _ in extra]
+        object.__setattr__(self, "_owners", owners)
+        object.__setattr__(self, "_alt_xy", np.array([p for _, p in extra], float).reshape(-1, 2))
+        object.__setattr__(self, "_alt_owner", np.array([i for i, _ in extra], np.intp))
+        xy = self._xy.tolist() + [list(p) for _, p in extra]  # type: ignore[attr-defined]
         finder = (
             Lattice(xy, 2 * self.size) if self.grid else RegionIndex(xy, self.size, self.square)
         )
@@ -100,12 +117,21 @@ class Places:
 
     def contains(self, points: np.ndarray, index: np.ndarray) -> np.ndarray:
         """``points`` (..., 2) against places ``index``: shape (..., len(index))."""
-        return self.contains_centres(points, self._xy[index])  # type: ignore[attr-defined]
+        inside = self.contains_centres(points, self._xy[index])  # type: ignore[attr-defined]
+        if len(self._alt_owner):  # type: ignore[attr-defined]
+            belongs = self._alt_owner[:, None] == np.asarray(index)[None, :]  # type: ignore[attr-defined]
+            in_alt = self.contains_centres(points, self._alt_xy)  # type: ignore[attr-defined]
+            inside = inside | ((in_alt.astype(np.intp) @ belongs) > 0)
+        return inside
 
     def containing(self, x: float, y: float) -> list[int]:
         """Positions (in ``centres``' order) of the places that contain the point ``(x, y)``:
         the one-observation form of :meth:`contains`."""
-        return self._finder.containing(x, y)  # type: ignore[attr-defined]
+        regions = self._finder.containing(x, y)  # type: ignore[attr-defined]
+        if not self.alternatives:
+            return regions
+        owners: list[int] = self._owners  # type: ignore[attr-defined]
+        return sorted({owners[r] for r in regions})
 
     def contains_centres(self, points: np.ndarray, centres: np.ndarray) -> np.ndarray:
         """``points`` (..., 2) against regions of this table centred at ``centres`` (k, 2)."""
@@ -117,7 +143,7 @@ class Places:
         return np.einsum("...i,...i->...", offset, offset) < self.size**2
 
 
-#: a route: the groundings list it was built for, (table, columns, centres) per place table,
+#: a route: the groundings list it was built for, (table, columns, places) per place table,
 #: whether one table answers every grounding in order, and per table the grounding positions
 #: of each of its places (for the one-observation path)
 Route = tuple[
@@ -144,8 +170,7 @@ class InPlace:
         for table in self.places:
             columns = [i for i, n in enumerate(names) if n in table.centres]
             if columns:
-                centres = np.array([table.centre(names[i]) for i in columns])
-                plan.append((table, np.array(columns), centres))
+                plan.append((table, np.array(columns), table.index([names[i] for i in columns])))
         whole = len(plan) == 1 and len(plan[0][1]) == len(names)
         positions: list[dict[int, list[int]]] = []
         for table in self.places:
@@ -176,11 +201,11 @@ class InPlace:
         _, plan, whole, _ = self._route_for(groundings)
         points = obs[..., self.position]
         if whole:  # one table answers every grounding, in order
-            table, _, centres = plan[0]
-            return table.contains_centres(points, centres)
+            table, _, index = plan[0]
+            return table.contains(points, index)
         out = np.zeros((*points.shape[:-1], len(groundings)), dtype=bool)
-        for table, columns, centres in plan:
-            out[..., columns] = table.contains_centres(points, centres)
+        for table, columns, index in plan:
+            out[..., columns] = table.contains(points, index)
         return out
 
 
@@ -220,19 +245,36 @@ class PlanarGeometryHooks:
 
 EE = slice(0, 2)
 BOX = slice(2, 4)
-_EE_ENTITY = {"ee": ("robot_at", 0, EE)}
-_PUSH_ENTITIES = {"ee": ("robot_at", 0, EE), "box": ("object_at", 1, BOX)}
+EE_ENTITY = {"ee": ("robot_at", 0, EE)}
+PUSH_ENTITIES = {"ee": ("robot_at", 0, EE), "box": ("object_at", 1, BOX)}
 
 
 def _along(a: Point, b: Point, fraction: float) -> Point:
     return (a[0] + fraction * (b[0] - a[0]), a[1] + fraction * (b[1] - a[1]))
 
 
-def _behind(box: Point, goal: Point) -> Point:
+def _behind(box: Point, goal: Point, contact: float = CONTACT) -> Point:
     """Where the end effector touches the box from the side opposite to ``goal``."""
     dx, dy = goal[0] - box[0], goal[1] - box[1]
     norm = math.hypot(dx, dy)
-    return (box[0] - CONTACT * dx / norm, box[1] - CONTACT * dy / norm)
+    return (box[0] - contact * dx / norm, box[1] - contact * dy / norm)
+
+
+def push_places(ee_start: Point, box_start: Point, goal: Point, contact: float) -> dict[str, Point]:
+    """The places of push's single and multi problems for one start and goal: the end
+    effector's start, the box's start, the goal, two waypoints of the box between them, and
+    behind each of these, where the end effector touches the box before pushing it on."""
+    beyond = (2 * goal[0] - box_start[0], 2 * goal[1] - box_start[1])
+    waypoints = {f"w{k}": _along(box_start, goal, k / 3) for k in (1, 2)}
+    return {
+        "start": ee_start,
+        "box_start": box_start,
+        "behind_box": _behind(box_start, goal, contact),
+        **waypoints,
+        **{f"behind_{n}": _behind(w, goal, contact) for n, w in waypoints.items()},
+        "goal": goal,
+        "behind_goal": _behind(goal, beyond, contact),
+    }
 
 
 G = GEOMETRY
@@ -252,33 +294,31 @@ PLACES: dict[str, dict[str, Point]] = {
         "w3": (0.50, 0.22),
         "goal": G.maze_goal,
     },
-    "push": {
-        "start": G.ee_start,
-        "box_start": G.box_start,
-        "behind_box": _behind(G.box_start, G.box_goal),
-        **{f"w{k}": _along(G.box_start, G.box_goal, k / 3) for k in (1, 2)},
-        **{
-            f"behind_w{k}": _behind(_along(G.box_start, G.box_goal, k / 3), G.box_goal)
-            for k in (1, 2)
-        },
-        "goal": G.box_goal,
-        "behind_goal": _behind(
-            G.box_goal, (2 * G.box_goal[0] - G.box_start[0], 2 * G.box_goal[1] - G.box_start[1])
-        ),
-    },
+    "push": push_places(G.ee_start, G.box_start, G.box_goal, CONTACT),
 }
 
 
-def _waypoint_places(task: str) -> list[Places]:
-    behind = {n: p for n, p in PLACES[task].items() if n.startswith("behind")}
-    waypoints = {n: p for n, p in PLACES[task].items() if n not in behind}
-    tables = [Places(waypoints, PLACE_RADIUS)]
+def waypoint_tables(
+    places: Mapping[str, Point], alternatives: Mapping[str, tuple[Point, ...]] | None = None
+) -> list[Places]:
+    """The place tables of a single or multi model: the waypoints as discs of the success
+    radius, and the places behind the box as smaller discs."""
+    behind = {n: p for n, p in places.items() if n.startswith("behind")}
+    waypoints = {n: p for n, p in places.items() if n not in behind}
+    tables = [Places(waypoints, PLACE_RADIUS, alternatives=dict(alternatives or {}))]
     if behind:
         tables.append(Places(behind, BEHIND_RADIUS))
     return tables
 
 
-def _model(domain: str, problem_path, places: list[Places], entities) -> AbstractModel:
+def _waypoint_places(task: str) -> list[Places]:
+    return waypoint_tables(PLACES[task])
+
+
+def planar_model(domain: str, problem_path, places: list[Places], entities) -> AbstractModel:
+    """The abstract model of a planar task: ``domain``'s shipped domain file, a problem file,
+    one :class:`InPlace` classifier per entity predicate over ``places``, and the geometry
+    hooks."""
     classifiers = {
         predicate: Vectorized(in_place, holding=in_place.holding)
         for predicate, arg, position in entities.values()
@@ -293,8 +333,10 @@ def _model(domain: str, problem_path, places: list[Places], entities) -> Abstrac
 
 
 def _waypoint_model(task: str, granularity: str) -> AbstractModel:
-    entities = _PUSH_ENTITIES if task == "push" else _EE_ENTITY
-    return _model(task, pddl_file(task, f"{granularity}.pddl"), _waypoint_places(task), entities)
+    entities = PUSH_ENTITIES if task == "push" else EE_ENTITY
+    return planar_model(
+        task, pddl_file(task, f"{granularity}.pddl"), _waypoint_places(task), entities
+    )
 
 
 def reach_single() -> AbstractModel:
@@ -370,8 +412,11 @@ class Grid:
         }
         return Places(centres, self.cell / 2, square=True, grid=True)
 
-    def blocked_edges(self, margin: float) -> list[tuple[tuple[int, int], tuple[int, int]]]:
-        """Pairs of adjacent cells whose connecting segment touches a maze wall."""
+    def blocked_edges(
+        self, margin: float, walls: Sequence[Rect] = G.maze_walls
+    ) -> list[tuple[tuple[int, int], tuple[int, int]]]:
+        """Pairs of adjacent cells whose connecting segment touches a wall (maze-reach's by
+        default)."""
         rows, cols = self.shape
         blocked = []
         for r in range(rows):
@@ -381,7 +426,7 @@ class Grid:
                         continue
                     a, b = self.centre((r, c)), self.centre(other)
                     points = [_along(a, b, k / 10) for k in range(11)]
-                    if any(w.contains(p, margin) for w in G.maze_walls for p in points):
+                    if any(w.contains(p, margin) for w in walls for p in points):
                         blocked.append(((r, c), other))
         return blocked
 
@@ -390,7 +435,11 @@ def _grid_names(task: str) -> GridNames:
     return GridNames(domain=task, problem=f"{task}-grid", cell_type="place")
 
 
-def _navigation_grid(task: str, start: Point, goal: Point, walls: bool) -> AbstractModel:
+def navigation_grid(
+    task: str, start: Point, goal: Point, walls: Sequence[Rect], ee_radius: float = G.ee_radius
+) -> AbstractModel:
+    """The grid model of reach or maze-reach from ``start`` to ``goal``: cells of
+    :data:`CELL` aligned on the goal, without the edges whose segment touches a wall."""
     grid, names = Grid(goal), _grid_names(task)
     rows, cols = grid.shape
     pddl = grid_pddl(
@@ -398,19 +447,19 @@ def _navigation_grid(task: str, start: Point, goal: Point, walls: bool) -> Abstr
         cols,
         start=grid.cell_of(start),
         goal=grid.cell_of(goal),
-        blocked_edges=grid.blocked_edges(G.ee_radius) if walls else (),
+        blocked_edges=grid.blocked_edges(ee_radius, walls) if walls else (),
         names=names,
     )
     problem = generated_file(f"{task}-grid", pddl.problem)
-    return _model(task, problem, [grid.places(names)], _EE_ENTITY)
+    return planar_model(task, problem, [grid.places(names)], EE_ENTITY)
 
 
 def reach_grid() -> AbstractModel:
-    return _navigation_grid("reach", G.ee_start, G.reach_goal, walls=False)
+    return navigation_grid("reach", G.ee_start, G.reach_goal, walls=())
 
 
 def maze_reach_grid() -> AbstractModel:
-    return _navigation_grid("maze-reach", G.ee_start, G.maze_goal, walls=True)
+    return navigation_grid("maze-reach", G.ee_start, G.maze_goal, walls=G.maze_walls)
 
 
 #: a push along ``d`` may slide the box one cell sideways: the box follows the end effector
@@ -419,14 +468,22 @@ _SLIDES = {False: (0,), True: (0, -1, 1)}
 
 
 def push_grid_problem(
-    grid: Grid, ee_start: Point, box_start: Point, *, diagonal: bool = False
+    grid: Grid,
+    ee_start: Point,
+    box_start: Point,
+    *,
+    diagonal: bool = False,
+    goal: Point = G.box_goal,
+    round_object: bool = False,
 ) -> str:
     """The Sokoban-like push problem on ``grid`` (generated, not shipped).
 
     With ``diagonal``, the end effector also moves between 8-adjacent cells, and a push from
     the cell opposite the box may also slide the box one cell sideways (the end effector
     moves diagonally and the box follows it along the pushed face by friction); the end
-    effector ends behind the box's new cell either way.
+    effector ends behind the box's new cell either way. A ``round_object`` (the paper's
+    cylinder) has no faces: a sphere pushes it along the line of their centres, so with
+    ``diagonal`` it is pushed from any of its 8 neighbours straight on, and never slid.
     """
     names = _grid_names("push")
     rows, cols = grid.shape
@@ -438,14 +495,16 @@ def push_grid_problem(
     ]
     steps = ((-1, 0), (1, 0), (0, -1), (0, 1))
     moves = steps + (((-1, -1), (-1, 1), (1, -1), (1, 1)) if diagonal else ())
+    pushed_from = moves if round_object else steps
+    slides = (0,) if round_object else _SLIDES[diagonal]
     for r, c in sorted(inside):
         for dr, dc in moves:
             ahead = (r + dr, c + dc)
             if ahead in inside:
                 facts.append(f"(neighbors {name[(r, c)]} {name[ahead]})")
-            if (dr, dc) not in steps:
-                continue  # the box is pushed from a face, never from a corner
-            for slide in _SLIDES[diagonal]:
+            if (dr, dc) not in pushed_from:
+                continue  # a box is pushed from a face, never from a corner
+            for slide in slides:
                 # sideways is perpendicular to the push direction (dr, dc)
                 sr, sc = slide * dc, slide * dr
                 further = (ahead[0] + dr + sr, ahead[1] + dc + sc)
@@ -462,20 +521,32 @@ def push_grid_problem(
   (:objects {objects} - place
             box - box)
   (:init {init})
-  (:goal (object_at box {name[grid.cell_of(G.box_goal)]})))
+  (:goal (object_at box {name[grid.cell_of(goal)]})))
 """
 
 
-def push_grid(cell: float = CELL, *, diagonal: bool = False) -> AbstractModel:
-    """Push's Sokoban-like grid model on cells of side ``cell`` (the registered model uses
-    :data:`CELL`; the invariance checker's toy uses coarser cells); ``diagonal`` adds
-    8-adjacent moves and pushes that slide the box sideways (see :func:`push_grid_problem`)."""
-    grid = Grid(G.box_goal, cell)
+def push_grid(
+    cell: float = CELL,
+    *,
+    diagonal: bool = False,
+    ee_start: Point = G.ee_start,
+    box_start: Point = G.box_start,
+    goal: Point = G.box_goal,
+    round_object: bool = False,
+) -> AbstractModel:
+    """Push's Sokoban-like grid model on cells of side ``cell`` (the registered v0 model uses
+    :data:`CELL`, v1 0.075 m; the invariance checker's toy uses coarser cells); ``diagonal``
+    adds 8-adjacent moves and pushes that slide the box sideways, or for a ``round_object``
+    diagonal pushes (see :func:`push_grid_problem`)."""
+    grid = Grid(goal, cell)
     stem = f"push-grid{'-diagonal' if diagonal else ''}-{cell:g}"
     problem = generated_file(
-        stem, push_grid_problem(grid, G.ee_start, G.box_start, diagonal=diagonal)
+        stem,
+        push_grid_problem(
+            grid, ee_start, box_start, diagonal=diagonal, goal=goal, round_object=round_object
+        ),
     )
-    return _model("push", problem, [grid.places(_grid_names("push"))], _PUSH_ENTITIES)
+    return planar_model("push", problem, [grid.places(_grid_names("push"))], PUSH_ENTITIES)
 
 
 def push_grid_diagonal() -> AbstractModel:

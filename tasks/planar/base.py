@@ -9,7 +9,11 @@ Step semantics (from the paper's released code):
 * a target outside the workspace is **rejected**: the end effector holds its position for that
   step and ``info["move_rejected"]`` is true (the paper's code skips the move likewise; a
   non-finite action is rejected the same way);
-* walls and the box are real MuJoCo contacts, so a blocked end effector stops at the wall;
+* walls and the box are real MuJoCo contacts, so a blocked end effector stops at the wall
+  (``wall_contact = "slide"``); a task with ``wall_contact = "reject"`` (reach-v1, as the
+  paper's reaching code does: it undoes a move after which the arm touches the wall) rejects a
+  move whose target, or the midpoint on the way to it, brings the end effector within its
+  radius of a wall: the end effector holds its position and ``info["move_rejected"]`` is true;
 * the environment never terminates and never truncates: success does not end the episode
   (the task is to reach the goal and stay there), and the horizon is left to Gymnasium's
   ``TimeLimit`` (``max_episode_steps`` at registration).
@@ -17,6 +21,7 @@ Step semantics (from the paper's released code):
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any, ClassVar, Literal
 
@@ -26,9 +31,10 @@ import numpy as np
 from gymnasium import spaces
 
 from planshape.errors import BadInputError, UnknownIdError
-from planshape.tasks.planar.geometry import GEOMETRY, PlanarGeometry, Rect
+from planshape.tasks.planar.geometry import PlanarGeometry, Point, Rect
 from planshape.tasks.planar.model import PHYSICS, PlanarPhysics, planar_mjcf
 from planshape.tasks.planar.render import draw
+from planshape.tasks.planar.versions import planar_version
 
 RewardVariant = Literal["sparse", "dense"]
 REWARD_VARIANTS: tuple[str, ...] = ("sparse", "dense")
@@ -52,18 +58,23 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
             ``self.np_random`` on every reset instead of the paper's fixed start.
         randomize_goal: draw the goal from the task's goal region on every reset.
         render_mode: ``None`` or ``"rgb_array"`` (a top-down picture, see ``render.py``).
-        geometry: the task geometry (the paper's by default).
+        version: ``"v0"`` or ``"v1"``, the geometry and physics of that task version (see
+            :mod:`planshape.tasks.planar.versions`).
+        geometry: a custom geometry instead of the version's.
     """
 
     metadata: ClassVar[dict[str, Any]] = {
         "render_modes": ["rgb_array"],
-        "render_fps": round(1.0 / PHYSICS.control_dt),
+        "render_fps": round(1.0 / PHYSICS.control_dt),  # the same in every version
     }
 
     task: ClassVar[str] = ""
     has_box: ClassVar[bool] = False
     entities: ClassVar[Mapping[str, slice]] = {"ee": slice(0, 2)}
     """Where each entity's (x, y) lies in the observation."""
+    wall_contact: ClassVar[str] = "slide"
+    """What a wall does to the end effector: ``"slide"`` (a MuJoCo contact) or ``"reject"``
+    (a move that would touch it is not made)."""
 
     def __init__(
         self,
@@ -71,7 +82,8 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         randomize_start: bool = False,
         randomize_goal: bool = False,
         render_mode: str | None = None,
-        geometry: PlanarGeometry = GEOMETRY,
+        version: str = "v0",
+        geometry: PlanarGeometry | None = None,
     ) -> None:
         if reward not in REWARD_VARIANTS:
             raise UnknownIdError(
@@ -90,8 +102,10 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         self.randomize_start = bool(randomize_start)
         self.randomize_goal = bool(randomize_goal)
         self.render_mode = render_mode
-        self.geometry = geometry
-        self.physics: PlanarPhysics = PHYSICS
+        chosen = planar_version(version)
+        self.version = version
+        self.geometry = geometry = geometry or chosen.geometry
+        self.physics: PlanarPhysics = chosen.physics
 
         self._model = mujoco.MjModel.from_xml_string(
             planar_mjcf(geometry, box=self.has_box, walls=self.walls, physics=self.physics)
@@ -105,6 +119,11 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         self._dense = reward == "dense"
         self._goal = np.array(self._default_goal(), dtype=np.float64)
         self._gx, self._gy = float(self._goal[0]), float(self._goal[1])
+        self._rejecting_walls = self.walls if self.wall_contact == "reject" else ()
+        self._reach_clearance = float(geometry.ee_radius)
+        self._detour_reached = False
+        #: the task distance after the previous step (the paper's push reward reads it)
+        self._previous_distance = math.nan
 
         self.action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
         low, high = self._observation_bounds()
@@ -133,6 +152,33 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
 
     def _dense_reward(self, q: list[float], distance: float) -> float:
         raise NotImplementedError
+
+    def _detour_reward(self, q: list[float], distance: float, detour: tuple[Point, ...]) -> float:
+        """The paper's dense reward of its reaching tasks (``_get_reward_with_subgoal``): until
+        the end effector has once come within the success threshold of the detour point nearest
+        to it, −(its distance to that point + that point's distance to the goal); from then on,
+        −(its distance to the goal). The latch is not in the observation, as in the paper; it
+        resets on ``reset``. Without detour points: −distance."""
+        if not detour:
+            return -distance
+        x, y = q[0], q[1]
+        near = min(detour, key=lambda p: math.hypot(x - p[0], y - p[1]))
+        to_near = math.hypot(x - near[0], y - near[1])
+        if to_near < self._threshold:
+            self._detour_reached = True
+        if self._detour_reached:
+            return -distance
+        return -(to_near + math.hypot(self._gx - near[0], self._gy - near[1]))
+
+    def _touches_wall(self, x: float, y: float, tx: float, ty: float) -> bool:
+        """Whether a move to ``(tx, ty)`` (or its midpoint) brings the end effector within its
+        radius of a rejecting wall."""
+        mx, my = (x + tx) / 2, (y + ty) / 2
+        r = self._reach_clearance
+        return any(
+            wall.distance((tx, ty)) < r or wall.distance((mx, my)) < r
+            for wall in self._rejecting_walls
+        )
 
     def _sample_start(self) -> None:
         """Write a random start into qpos (default: the end effector anywhere in the workspace,
@@ -225,6 +271,7 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         """
         super().reset(seed=seed)
         options = options or {}
+        self._detour_reached = False
         model, data = self._model, self._data
         mujoco.mj_resetData(model, data)
 
@@ -259,6 +306,7 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
 
         q = self._qpos_obs.tolist()
         distance = self._task_distance(q)
+        self._previous_distance = distance
         return self._observation(q), self._info(q, distance, distance < self._threshold, False)
 
     def _set_default_start(self) -> None:
@@ -279,6 +327,8 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         tx = x + self._step_size * ax
         ty = y + self._step_size * ay
         rejected = not (self._x_lo <= tx <= self._x_hi and self._y_lo <= ty <= self._y_hi)
+        if self._rejecting_walls and not rejected:
+            rejected = self._touches_wall(x, y, tx, ty)
         ctrl = data.ctrl
         if rejected:
             ctrl[0] = x
@@ -292,5 +342,6 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         distance = self._task_distance(q)
         success = distance < self._threshold
         reward = self._dense_reward(q, distance) if self._dense else float(success)
+        self._previous_distance = distance
         info = self._info(q, distance, success, rejected)
         return self._observation(q), reward, False, False, info

@@ -5,6 +5,11 @@ The numbers are those of the source paper's released code (the AIRobot/HW4 UR5e 
 workspace ``x ∈ [0.23, 0.78]``, ``y ∈ [−0.35, 0.30]``, the end-effector start ``(0.45, −0.32)``,
 steps of ``0.02`` per unit action, success within ``0.05`` of the goal.
 
+Two versions exist. :data:`GEOMETRY` is that of the ``-v0`` tasks: reach without a wall and a
+square box in push. :data:`PAPER_GEOMETRY` is that of the ``-v1`` tasks, the paper's code as
+its ``main.py`` ran it: reach behind a wall (``with_obstacle=True``), push with a cylinder of
+radius 0.05, and the detour points the paper's dense rewards and subgoals use.
+
 Example:
     >>> from planshape.tasks.planar.geometry import GEOMETRY
     >>> GEOMETRY.in_workspace((0.45, -0.32)), GEOMETRY.in_workspace((0.20, 0.0))
@@ -13,12 +18,16 @@ Example:
     [(0.5, -0.2), (0.4, -0.03), (0.6, -0.03)]
     >>> GEOMETRY.maze_walls[0].contains((0.5, -0.22), margin=GEOMETRY.ee_radius)
     True
+    >>> [(w.center, w.half_extents) for w in PAPER_GEOMETRY.reach_walls]
+    [((0.5, 0.15), (0.18, 0.01))]
+    >>> PAPER_GEOMETRY.object_radius, PAPER_GEOMETRY.contact_distance
+    (0.05, 0.07)
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -95,11 +104,20 @@ class PlanarGeometry:
         ee_radius: radius of the spherical end effector.
         ee_start: the end effector's start position in all three tasks.
         reach_goal: goal of the end effector in reach.
-        box_half_size: half side of the square box in push.
+        box_half_size: half side of the square box in push (when ``object_radius`` is None).
+        object_radius: radius of push's object when it is a cylinder (the paper's), or None for
+            the square box of ``box_half_size``.
         box_start: the box's start position in push.
         box_goal: goal of the box in push.
         maze_goal: goal of the end effector in maze-reach.
         maze_walls: the three walls of maze-reach (bottom, left, right), a U open at the top.
+        reach_walls: the walls of reach: none (v0), or the paper's wall between start and goal.
+        reach_detour: the points beside reach's wall that the way to the goal passes (the
+            paper's ``_subgoal2_pos``: either end of the wall); its dense reward and its
+            ``single`` subgoal use them. Empty without a wall.
+        maze_detour: the same for maze-reach: the points above the U's side walls (the paper's
+            ``_subgoal2_pos`` of its maze task). Empty in v0, whose dense reward is the straight
+            distance.
         goal_region: where ``randomize_goal`` draws reach and push goals (the goal bounds of the
             paper's released code).
         box_start_region: where ``randomize_start`` draws the box in push.
@@ -129,6 +147,22 @@ class PlanarGeometry:
     box_start_region: Rect = Rect((0.30, -0.20), (0.65, 0.05))
     maze_goal_region: Rect = Rect((0.44, -0.15), (0.56, 0.10))
     box_margin: float = 0.10
+    object_radius: float | None = None
+    reach_walls: tuple[Rect, ...] = ()
+    reach_detour: tuple[Point, ...] = ()
+    maze_detour: tuple[Point, ...] = ()
+
+    @property
+    def object_extent(self) -> float:
+        """How far push's object reaches from its centre along a face normal: the cylinder's
+        radius, or the box's half side."""
+        return self.box_half_size if self.object_radius is None else self.object_radius
+
+    @property
+    def contact_distance(self) -> float:
+        """Centre-to-centre distance of the end effector and push's object when they touch
+        (along a face normal of the box; in every direction for the cylinder)."""
+        return round(self.object_extent + self.ee_radius, 12)
 
     def in_workspace(self, point: Sequence[float]) -> bool:
         """Whether a target for the end effector's centre is inside the workspace."""
@@ -150,4 +184,17 @@ class PlanarGeometry:
 
 
 GEOMETRY = PlanarGeometry()
-"""The paper's geometry; the default of every planar environment."""
+"""The geometry of the ``-v0`` planar tasks (reach without its wall, push with a square box);
+the default of every planar environment."""
+
+PAPER_GEOMETRY = replace(
+    GEOMETRY,
+    object_radius=0.05,
+    reach_walls=(Rect.from_center((0.50, 0.15), (0.18, 0.01)),),
+    reach_detour=((0.23, 0.15), (0.76, 0.15)),
+    maze_detour=((0.40, 0.23), (0.60, 0.23)),
+)
+"""The geometry of the ``-v1`` planar tasks, as the paper's ``main.py`` built them: reach with
+the wall of ``envs/reaching_env/reaching_task.py`` (centre (0.5, 0.15), half-extents
+(0.18, 0.01)), push with the cylinder of ``envs/pushing_env/pushing_task.py`` (radius 0.05),
+and the detour points of both reaching tasks' dense rewards."""

@@ -31,11 +31,13 @@ class MazeReachEnv(PlanarEnv):
 
     Success: the end effector's centre is strictly within 0.05 m of the goal;
     ``info["distance"]`` is the straight-line distance to the goal (the paper's metric).
-    Dense reward (as for reach, and as in the paper's baseline): ``-distance``, the straight-line
-    distance through the walls, which is deceptive here: it pulls the end effector against
-    the bottom wall. ``randomize_start`` draws starts clear of the walls, anywhere in the
-    workspace (inside the U included); ``randomize_goal`` draws goals inside the U. See
-    :class:`PlanarEnv` for the rest.
+    Dense reward: in v0 ``-distance``, the straight-line distance through the walls, which is
+    deceptive here: it pulls the end effector against the bottom wall. In v1 the paper's
+    ``_get_reward_with_subgoal``: first to the nearer of the points above the side walls,
+    (0.40, 0.23) and (0.60, 0.23), then to the goal (see :meth:`PlanarEnv._detour_reward`).
+    ``randomize_start`` draws starts clear of the walls, anywhere in the workspace (inside the U
+    included); ``randomize_goal`` draws goals inside the U. See :class:`PlanarEnv` for the
+    rest.
     """
 
     task = "maze-reach"
@@ -54,4 +56,4 @@ class MazeReachEnv(PlanarEnv):
         return math.hypot(q[0] - self._gx, q[1] - self._gy)
 
     def _dense_reward(self, q: list[float], distance: float) -> float:
-        return -distance
+        return self._detour_reward(q, distance, self.geometry.maze_detour)

@@ -1,9 +1,10 @@
 """The MuJoCo model of the planar tasks, built in code from :class:`PlanarGeometry`.
 
 A spherical end effector slides in the x-y plane on two slide joints, driven by two position
-servos; an optional square box slides (without rotating) on its own two slide joints, with
-viscous damping so that it stops within millimetres when it is no longer pushed; optional walls
-are static boxes. Gravity is off: nothing moves out of the plane, so no table is needed.
+servos; an optional object (a square box, or the paper's cylinder) slides (without rotating) on
+its own two slide joints, with viscous damping so that it stops within millimetres when it is no
+longer pushed; optional walls are static boxes. Gravity is off: nothing moves out of the plane,
+so no table is needed.
 
 qpos layout: ``[ee_x, ee_y]`` and, with a box, ``[box_x, box_y]`` after them; because every
 body's frame is the world origin, qpos holds world coordinates.
@@ -19,7 +20,7 @@ Example:
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from planshape.tasks.planar.geometry import PlanarGeometry, Rect
 
@@ -82,7 +83,13 @@ class PlanarPhysics:
 
 
 PHYSICS = PlanarPhysics()
-"""The physics every planar environment uses."""
+"""The physics of the ``-v0`` planar tasks."""
+
+PAPER_PHYSICS = replace(PHYSICS, ee_mass=1.0, box_mass=1.0, box_damping=60.0, box_friction=0.9)
+"""The physics of the ``-v1`` planar tasks: the paper's object mass (1 kg) and friction (0.9).
+The end effector's mass and the object's damping are scaled with the object's mass (×10), so
+the servo's ``kp / m`` and the object's stopping time ``m / c`` are those of :data:`PHYSICS`:
+the end effector moves exactly as in v0, and the object still stops within millimetres."""
 
 
 def _wall_xml(index: int, wall: Rect, height: float) -> str:
@@ -131,15 +138,19 @@ def planar_mjcf(
         "    </body>",
     ]
     if box:
-        h = geometry.box_half_size
         joint = f'damping="{p.box_damping!r}"'
         if p.box_frictionloss > 0:
             joint += f' frictionloss="{p.box_frictionloss!r}"'
+        if geometry.object_radius is None:
+            h = geometry.box_half_size
+            shape = f'type="box" size="{h!r} {h!r} {min(h, p.wall_height)!r}"'
+        else:
+            shape = f'type="cylinder" size="{geometry.object_radius!r} {p.wall_height!r}"'
         parts += [
             '    <body name="box">',
             f'      <joint name="box_x" type="slide" axis="1 0 0" {joint}/>',
             f'      <joint name="box_y" type="slide" axis="0 1 0" {joint}/>',
-            f'      <geom name="box" type="box" size="{h!r} {h!r} {min(h, p.wall_height)!r}" '
+            f'      <geom name="box" {shape} '
             f'mass="{p.box_mass!r}" condim="3" friction="{p.box_friction!r} 0.005 0.0001" '
             'rgba="1 0.6 0.6 1"/>',
             "    </body>",

@@ -49,13 +49,44 @@ def _toward(
     return np.array((min(max(vx, -1.0), 1.0), min(max(vy, -1.0), 1.0)), dtype=np.float32)
 
 
+def _segment_clear(
+    a: Sequence[float], b: Sequence[float], walls: Sequence[Rect], clearance: float
+) -> bool:
+    """Whether the end effector can go straight from ``a`` to ``b`` clear of ``walls``."""
+    points = (_along(a, b, k / 24) for k in range(25))
+    return not any(_blocked(p, walls, clearance) for p in points)
+
+
+def _along(a: Sequence[float], b: Sequence[float], fraction: float) -> tuple[float, float]:
+    return (
+        float(a[0]) + fraction * (float(b[0]) - float(a[0])),
+        float(a[1]) + fraction * (float(b[1]) - float(a[1])),
+    )
+
+
 def reach_oracle(
     obs: np.ndarray,
     goal: Sequence[float] = GEOMETRY.reach_goal,
     geometry: PlanarGeometry = GEOMETRY,
 ) -> np.ndarray:
-    """To the goal in the fewest steps (diagonal, then straight), then hold it."""
-    return _toward(obs[:2], goal, geometry.step_size, keep_direction=False)
+    """To the goal in the fewest steps (diagonal, then straight), then hold it.
+
+    With a wall in the way (v1), first to the corner of the wall's nearer end on the goal's
+    side (the end that makes the shorter way), then to the goal; every move is cut down to its
+    x or y part when it would touch the wall.
+    """
+    pos = (float(obs[0]), float(obs[1]))
+    walls, step = geometry.reach_walls, geometry.step_size
+    clear = geometry.ee_radius + _CLEARANCE
+    target: Sequence[float] = goal
+    blocking = [w for w in walls if not _segment_clear(pos, goal, (w,), clear)]
+    if blocking:
+        wall = blocking[0]
+        y = wall.high[1] + clear if goal[1] > wall.center[1] else wall.low[1] - clear
+        corners = [(wall.low[0] - clear, y), (wall.high[0] + clear, y)]
+        target = min(corners, key=lambda c: math.dist(pos, c) + math.dist(c, goal))
+    action = _toward(pos, target, step, keep_direction=False)
+    return _avoid_walls(pos, action, walls, geometry) if walls else action
 
 
 def _blocked(pos: Sequence[float], walls: Sequence[Rect], clearance: float) -> bool:
@@ -111,6 +142,55 @@ def maze_reach_oracle(
 
 
 def push_oracle(
+    obs: np.ndarray,
+    goal: Sequence[float] = GEOMETRY.box_goal,
+    geometry: PlanarGeometry = GEOMETRY,
+) -> np.ndarray:
+    """The push oracle of the geometry's object: :func:`push_cylinder_oracle` for the paper's
+    cylinder (v1), :func:`push_box_oracle` for the square box (v0)."""
+    if geometry.object_radius is not None:
+        return push_cylinder_oracle(obs, goal, geometry)
+    return push_box_oracle(obs, goal, geometry)
+
+
+def push_cylinder_oracle(
+    obs: np.ndarray,
+    goal: Sequence[float] = GEOMETRY.box_goal,
+    geometry: PlanarGeometry = GEOMETRY,
+) -> np.ndarray:
+    """Get behind the cylinder on the line from the goal through its centre, then push towards
+    the goal, steering back onto that line (re-read every step); hold once the object is
+    within half the success threshold.
+
+    A sphere pushes a cylinder along the line of their centres, so a push off that line sends
+    the object sideways; the steering term moves the end effector back behind the centre.
+    Starting elsewhere, the end effector goes around the object, keeping clear of it.
+    """
+    step, contact = geometry.step_size, geometry.contact_distance
+    ee = np.array(obs[:2], dtype=float)
+    obj = np.array(obs[2:4], dtype=float)
+    error = np.asarray(goal, dtype=float) - obj
+    gap = float(np.hypot(*error))
+    if gap < 0.5 * geometry.success_threshold:
+        return np.zeros(2, dtype=np.float32)
+    u = error / gap
+    normal = np.array([-u[1], u[0]])
+    rel = ee - obj
+    along, across = float(rel @ u), float(rel @ normal)
+    if along < -0.5 * contact and abs(across) < 0.012:  # behind the object: push
+        push = u + normal * (-across / step) * 0.8 + u * min(0.0, -(along + contact)) / step
+        return (push / max(1.0, float(np.abs(push).max()))).astype(np.float32)
+    behind = obj - (contact + 0.01) * u
+    if along < -0.5 * contact:  # behind but off the line: slide sideways onto it
+        return _toward(ee, behind, step, keep_direction=True)
+    # beside or in front: go around, on the side the end effector is on
+    side = 1.0 if across >= 0 else -1.0
+    around = contact + 0.02
+    waypoint = obj + side * around * normal - around * u * (1.0 if along < 0.5 * contact else 0.0)
+    return _toward(ee, waypoint, step, keep_direction=True)
+
+
+def push_box_oracle(
     obs: np.ndarray,
     goal: Sequence[float] = GEOMETRY.box_goal,
     geometry: PlanarGeometry = GEOMETRY,
@@ -226,16 +306,82 @@ def run_oracle(
     )
 
 
-def walk_plan(
-    env: gymnasium.Env, max_steps: int, *, axis_first: bool | None = None, seed: int = 0
-) -> tuple[list[int], bool]:
+def route(
+    start: Sequence[float],
+    target: Sequence[float],
+    walls: Sequence[Rect],
+    clearance: float,
+    workspace: Rect,
+    pitch: float = 0.01,
+) -> list[tuple[float, float]]:
+    """Waypoints from ``start`` to ``target`` (the last one) along which the end effector stays
+    ``clearance`` from every wall: ``[target]`` when the straight segment is clear, else the
+    shortest 8-connected path on a lattice of ``pitch`` anchored at ``start``, shortened to the
+    points where it turns (breadth-first search; the workspace has a few thousand lattice
+    points).
+
+    Example:
+        >>> wall = Rect.from_center((0.5, 0.0), (0.01, 0.1))
+        >>> way = route((0.4, 0.0), (0.6, 0.0), [wall], 0.02, Rect((0.2, -0.3), (0.8, 0.3)))
+        >>> len(way) > 1 and way[-1] == (0.6, 0.0)
+        True
+    """
+    goal = (float(target[0]), float(target[1]))
+    if _segment_clear(start, goal, walls, clearance):
+        return [goal]
+    x0, y0 = float(start[0]), float(start[1])
+
+    def point(node: tuple[int, int]) -> tuple[float, float]:
+        return (x0 + pitch * node[0], y0 + pitch * node[1])
+
+    def free(node: tuple[int, int]) -> bool:
+        p = point(node)
+        return workspace.contains(p) and not _blocked(p, walls, clearance)
+
+    origin = (0, 0)
+    parent: dict[tuple[int, int], tuple[int, int] | None] = {origin: None}
+    frontier, end = [origin], None
+    while frontier and end is None:
+        following = []
+        for node in frontier:
+            if _segment_clear(point(node), goal, walls, clearance):
+                end = node
+                break
+            for dx in (-1, 0, 1):
+                for dy in (-1, 0, 1):
+                    nxt = (node[0] + dx, node[1] + dy)
+                    if nxt not in parent and free(nxt):
+                        mid = _along(point(node), point(nxt), 0.5)
+                        if not _blocked(mid, walls, clearance):
+                            parent[nxt] = node
+                            following.append(nxt)
+        frontier = following
+    if end is None:
+        return [goal]  # no way around: head straight (the walls will stop the end effector)
+    path: list[tuple[int, int]] = []
+    node: tuple[int, int] | None = end
+    while node is not None:
+        path.append(node)
+        node = parent[node]
+    points = [point(n) for n in reversed(path)] + [goal]
+    # keep only the points where the path must turn (string pulling)
+    kept, i = [], 0
+    while i < len(points) - 1:
+        j = len(points) - 1
+        while j > i + 1 and not _segment_clear(points[i], points[j], walls, clearance):
+            j -= 1
+        kept.append(points[j])
+        i = j
+    return kept
+
+
+def walk_plan(env: gymnasium.Env, max_steps: int, *, seed: int = 0) -> tuple[list[int], bool]:
     """Walk a shaped planar environment through its plan's subgoal locations, in order.
 
     ``env`` must be shaped (``reward="shaped"``): for each subgoal of the plan in turn, the
     controller asks the task's ``locate`` hook where the end effector must be and heads there
-    until it is within a millimetre. It moves along x, then along y (``axis_first=True``: what
-    keeps a via point's legs clear of maze walls) or straight (``False``: what a push needs); by
-    default axis-first unless the task has a box.
+    until it is within a millimetre: around the walls by the shortest way (:func:`route`)
+    without a box, straight with one (what a push needs).
 
     Returns the shaping wrapper's progress after every step and whether the task's own success
     held at the end. This is the check that a PDDL model and its classifiers agree with the
@@ -243,21 +389,25 @@ def walk_plan(
     """
     shaping = env.get_wrapper_attr("progress")
     geometry = env.get_wrapper_attr("geometry")
-    if axis_first is None:
-        axis_first = not env.unwrapped.has_box
-    step = env.unwrapped.geometry.step_size
+    base = env.unwrapped
+    step = base.geometry.step_size
+    walls = () if base.has_box else base.walls
+    clear = base.geometry.ee_radius + 0.002
     obs, info = env.reset(seed=seed)
     progress = [info["progress"]]
-    subgoal = 1
+    subgoal, waypoints = 1, []
     for _ in range(max_steps):
         target = np.asarray(geometry.locate(shaping.subgoals[subgoal])["ee"], dtype=float)
         here = np.asarray(obs[:2], dtype=float)
         while np.abs(target - here).max() < 1e-3 and subgoal < shaping.final:
             subgoal += 1
             target = np.asarray(geometry.locate(shaping.subgoals[subgoal])["ee"], dtype=float)
-        if axis_first and abs(target[0] - here[0]) > 1e-3:
-            target = np.array([target[0], here[1]])
-        obs, _, terminated, truncated, info = env.step(_toward(here, target, step))
+            waypoints = []
+        if not waypoints:
+            waypoints = route(here, target, walls, clear, base.geometry.workspace)
+        while len(waypoints) > 1 and np.abs(np.asarray(waypoints[0]) - here).max() < 1e-3:
+            waypoints.pop(0)
+        obs, _, terminated, truncated, info = env.step(_toward(here, waypoints[0], step))
         progress.append(info["progress"])
         if terminated or truncated:
             break

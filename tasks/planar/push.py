@@ -2,7 +2,8 @@
 
 Observation ``(x_e, y_e, x_o, y_o)``: end effector then box (float32; the end effector bounded
 by the workspace, the box by the workspace grown by ``box_margin``); action
-``(Δx, Δy) ∈ [-1, 1]²``, a move of ``0.02 · action`` metres. The box (half side 0.03 m) starts
+``(Δx, Δy) ∈ [-1, 1]²``, a move of ``0.02 · action`` metres. The object — in v0 a square box of
+half side 0.03 m, in v1 the paper's cylinder of radius 0.05 m (1 kg, friction 0.9) — starts
 at ``(0.35, -0.10)``, its goal is ``(0.50, 0.20)``; the end effector starts at ``(0.45, -0.32)``.
 The box slides on the plane without rotating, follows the end effector while pushed (also
 sideways along the pushed face, by friction) and stops within about 2.5 mm when it is no
@@ -33,10 +34,11 @@ class PushEnv(PlanarEnv):
 
     Success: the box's centre is strictly within 0.05 m of the goal; ``info["distance"]`` is
     the box-to-goal distance (the paper's metric), and ``info["box_position"]`` is added to the
-    common keys. Dense reward: ``-(|ee - box| + |box - goal|)``: approach the box, then bring it
-    to the goal. (The paper's released code used ``-2|ee-box|² - |box-goal|³`` within 0.05 m of
-    the box and ``-|box-goal|² + (previous - current box distance)`` otherwise; with a
-    0.05 m sphere-to-box contact distance its first branch almost never fires.)
+    common keys. Dense reward in v0: ``-(|ee - box| + |box - goal|)``: approach the box, then
+    bring it to the goal. In v1 the paper's (``pushing_task.py``): ``-2|ee-box|² - |box-goal|³``
+    when the end effector is within 0.05 m of the object's centre, else
+    ``-|box-goal|² + (previous - current box-goal distance)``; the cylinder's contact distance
+    is 0.07 m, so its first branch never fires, as in the paper.
     ``randomize_start`` draws the box from ``box_start_region`` and the end effector from the
     workspace, apart from each other; ``randomize_goal`` draws the box goal from
     ``goal_region``. See :class:`PlanarEnv` for the rest.
@@ -58,7 +60,7 @@ class PushEnv(PlanarEnv):
 
     def _sample_start(self) -> None:
         g = self.geometry
-        apart = g.box_half_size + g.ee_radius + 0.01
+        apart = g.contact_distance + 0.01
         ee_region, box_region = g.ee_start_region, g.box_start_region
         for _ in range(_MAX_DRAWS):
             ee, box = ee_region.sample(self.np_random), box_region.sample(self.np_random)
@@ -79,4 +81,9 @@ class PushEnv(PlanarEnv):
         return math.hypot(q[2] - self._gx, q[3] - self._gy)
 
     def _dense_reward(self, q: list[float], distance: float) -> float:
-        return -(math.hypot(q[0] - q[2], q[1] - q[3]) + distance)
+        to_box = math.hypot(q[0] - q[2], q[1] - q[3])
+        if self.version == "v0":
+            return -(to_box + distance)
+        if to_box < self._threshold:
+            return -2.0 * to_box**2 - distance**3
+        return -(distance**2) + (self._previous_distance - distance)

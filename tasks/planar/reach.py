@@ -2,6 +2,9 @@
 
 Observation ``(x_e, y_e)`` (float32, bounded by the workspace); action ``(Δx, Δy) ∈ [-1, 1]²``,
 a move of ``0.02 · action`` metres; goal ``(0.50, 0.26)``; start ``(0.45, -0.32)``.
+In version ``v1`` (the paper's ``with_obstacle=True``) a wall, centre ``(0.50, 0.15)`` and
+half-extents ``(0.18, 0.01)``, lies between start and goal; a move that would touch it is not
+made (the paper's code undoes it), so the way to the goal passes either end of the wall.
 
 Example:
     >>> import numpy as np
@@ -26,12 +29,18 @@ class ReachEnv(PlanarEnv):
     """Reach the goal with the end effector and stay there.
 
     Success: the end effector's centre is strictly within ``success_threshold`` (0.05 m) of the
-    goal; ``info["distance"]`` is that distance. Dense reward (the HW4 solution the paper's
-    baseline uses): ``-distance``. See :class:`PlanarEnv` for the constructor arguments, the
-    workspace rule and the ``info`` keys.
+    goal; ``info["distance"]`` is that distance. Dense reward: in v0 (no wall) ``-distance``;
+    in v1 the paper's ``_get_reward_with_subgoal``, which leads to the nearer end of the wall
+    first (see :meth:`PlanarEnv._detour_reward`). See :class:`PlanarEnv` for the constructor
+    arguments, the workspace rule and the ``info`` keys.
     """
 
     task = "reach"
+    wall_contact = "reject"
+
+    @property
+    def walls(self) -> tuple[Rect, ...]:
+        return self.geometry.reach_walls
 
     def _default_goal(self) -> tuple[float, float]:
         return self.geometry.reach_goal
@@ -43,4 +52,4 @@ class ReachEnv(PlanarEnv):
         return math.hypot(q[0] - self._gx, q[1] - self._gy)
 
     def _dense_reward(self, q: list[float], distance: float) -> float:
-        return -distance
+        return self._detour_reward(q, distance, self.geometry.reach_detour)

@@ -67,7 +67,9 @@ def draw(
     for wall in walls:
         canvas.rect(wall, WALL)
     canvas.disc(goal, geometry.success_threshold, GOAL, ring=True)
-    if box is not None:
+    if box is not None and geometry.object_radius is not None:
+        canvas.disc(box, geometry.object_radius, BOX)
+    elif box is not None:
         h = geometry.box_half_size
         canvas.rect(Rect.from_center((box[0], box[1]), (h, h)), BOX)
     canvas.disc(ee, geometry.ee_radius, END_EFFECTOR)

@@ -17,7 +17,9 @@ import planshape  # noqa: F401  (registers the tasks)
 from planshape.registration import task_spec
 from planshape.tasks.planar.oracle import walk_plan
 
-PLANAR = ["planshape/Reach-v0", "planshape/Push-v0", "planshape/MazeReach-v0"]
+PLANAR = [
+    f"planshape/{name}-v{version}" for version in (0, 1) for name in ("Reach", "Push", "MazeReach")
+]
 CASES = [(task, model) for task in PLANAR for model in task_spec(task).models]
 
 
