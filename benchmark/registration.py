@@ -73,6 +73,14 @@ class TaskSpec:
         description: one line for ``planshape tasks``.
         default_model: the granularity used when ``model=`` is omitted (the first by default).
         success_key: the ``info`` key holding the task's own success flag.
+        kwargs: extra keyword arguments of the environment entry point.
+        fixed: every episode starts in the same state and the environment is deterministic, so
+            one episode of a deterministic policy measures it (the evaluation runs one).
+        instances: for a task-instance distribution, ``"module:attr"`` of a zero-argument
+            factory returning its instance set (an object with ``train`` and ``eval``
+            sequences); the environment entry point then takes ``instances="train"`` or
+            ``"eval"`` and reports each episode's instance as ``info["instance"]``, and every
+            model factory takes that instance and builds the instance's model.
     """
 
     id: str
@@ -83,8 +91,12 @@ class TaskSpec:
     default_model: str = ""
     success_key: str = "success"
     kwargs: Mapping[str, Any] = field(default_factory=dict)
+    fixed: bool = False
+    instances: str = ""
 
     def __post_init__(self) -> None:
+        if self.fixed and self.instances:
+            raise RegistrationError(f"task {self.id!r}: a fixed task has no instance set")
         if not self.id.startswith(f"{NAMESPACE}/"):
             raise RegistrationError(f"task id {self.id!r} must be in the {NAMESPACE}/ namespace")
         if not self.models:
@@ -102,13 +114,28 @@ _TASKS: dict[str, TaskSpec] = {}
 
 
 def register_task(spec: TaskSpec) -> None:
-    """Register ``spec`` with planshape and with Gymnasium."""
+    """Register ``spec`` with planshape and with Gymnasium (a task with instances trains on its
+    training set unless ``instances="eval"`` is passed to ``gymnasium.make``)."""
     _TASKS[spec.id] = spec
+    defaults = {"instances": "train"} if spec.instances else {}
     gymnasium.register(
         id=spec.id,
         entry_point=f"{__name__}:make_task_env",
-        kwargs={"task": spec.id, **spec.kwargs},
+        kwargs={"task": spec.id, **defaults, **spec.kwargs},
         max_episode_steps=spec.max_episode_steps,
+    )
+
+
+def instance_set(spec: TaskSpec) -> Any:
+    """The instance set of a task-instance distribution, or None for any other task."""
+    return load_reference(spec.instances)() if spec.instances else None
+
+
+def instances_summary(spec: TaskSpec) -> dict[str, int] | None:
+    """``{"train": N, "eval": M}`` for a task-instance distribution, None otherwise."""
+    instances = instance_set(spec)
+    return (
+        None if instances is None else {"train": len(instances.train), "eval": len(instances.eval)}
     )
 
 
@@ -154,24 +181,32 @@ def make_task_env(
             "train on it (a different discount changes the optimal policy)"
         )
     env = load_reference(spec.env_entry_point)(reward="sparse", **env_kwargs)
-    return shape(
-        env,
-        abstract_model(spec, model),
-        potential if potential is not None else "plan-based",
+    potential = potential if potential is not None else "plan-based"
+    options = dict(
         gamma=gamma,
         potential_kwargs=potential_kwargs,
         potential_scale=potential_scale,
         search=search,
         match=match,
     )
+    if spec.instances:
+        name = model or spec.default_model
+        abstract_model(spec, name)  # an unknown model is refused here, not at the first reset
+        return shape_instances(env, spec.id, name, potential, **options)  # type: ignore[arg-type]
+    return shape(env, abstract_model(spec, model), potential, **options)  # type: ignore[arg-type]
 
 
-def abstract_model(spec: TaskSpec, model: str | None = None) -> AbstractModel:
-    """Build the :class:`AbstractModel` of one granularity of a task."""
+def abstract_model(spec: TaskSpec, model: str | None = None, instance: Any = None) -> AbstractModel:
+    """Build the :class:`AbstractModel` of one granularity of a task; for a task-instance
+    distribution, that of ``instance`` (by default its first training instance)."""
     name = model or spec.default_model
     if name not in spec.models:
         raise UnknownIdError("model", name, spec.models, hint=f"for task {spec.id!r}")
-    built = load_reference(spec.models[name])()
+    factory = load_reference(spec.models[name])
+    if spec.instances:
+        built = factory(instance if instance is not None else instance_set(spec).train[0])
+    else:
+        built = factory()
     if not isinstance(built, AbstractModel):
         raise RegistrationError(
             f"{spec.id}: model factory {spec.models[name]!r} returned {type(built).__name__}, "
@@ -189,7 +224,7 @@ def _stamped(path: Path) -> tuple[Path, int]:
         raise BadInputError(f"{path}: PDDL file not found") from None
 
 
-@functools.lru_cache(maxsize=64)
+@functools.lru_cache(maxsize=512)
 def _planned(
     domain: Path, _domain_mtime: int, problem: Path, _problem_mtime: int, search: str
 ) -> tuple[PddlTask, Plan]:
@@ -212,12 +247,58 @@ def shape(
 
     ``potential_scale`` multiplies φ on top of the potential's own ``scale`` (the benchmark's
     ``shaping_scale``, see :mod:`planshape.hyperparams`)."""
-    task, plan = _planned(*_stamped(model.domain), *_stamped(model.problem), search)
-    abstraction = Abstraction(task, model.classifiers)
     return PotentialShaping(
         env,
         make_potential(potential, **dict(potential_kwargs or {})).rescaled(potential_scale),
-        PlanProgress(plan.subgoals, abstraction, match=match),
+        _progress(model, search, match),
         gamma=gamma,
         geometry=model.geometry,
+    )
+
+
+def _progress(model: AbstractModel, search: str, match: SubgoalMatch) -> PlanProgress:
+    """Plan ``model`` (cached) and bind its classifiers."""
+    task, plan = _planned(*_stamped(model.domain), *_stamped(model.problem), search)
+    return PlanProgress(plan.subgoals, Abstraction(task, model.classifiers), match=match)
+
+
+@functools.lru_cache(maxsize=4096)
+def instance_plan(
+    task: str,
+    model: str,
+    instance: Any,
+    search: str = "astar-lmcut",
+    match: SubgoalMatch = "fluents",
+) -> tuple[PlanProgress, Geometry | None]:
+    """The plan progress and geometry hooks of one instance of a task-instance distribution:
+    its model built, planned by Fast Downward through the plan cache and bound, once per
+    process (the shaping wrappers of every environment share them)."""
+    built = abstract_model(task_spec(task), model, instance)
+    return _progress(built, search, match), built.geometry
+
+
+def shape_instances(
+    env: gymnasium.Env,
+    task: str,
+    model: str,
+    potential: Any,
+    *,
+    gamma: float,
+    potential_kwargs: Mapping[str, Any] | None = None,
+    potential_scale: float = 1.0,
+    search: str = "astar-lmcut",
+    match: SubgoalMatch = "fluents",
+) -> gymnasium.Env:
+    """Wrap ``env``, a task-instance distribution, in potential shaping whose plan is that of
+    each episode's instance (:func:`instance_plan`), switched on ``reset`` only."""
+
+    def plans(instance: Any) -> tuple[PlanProgress, Geometry | None]:
+        return instance_plan(task, model, instance, search, match)
+
+    return PotentialShaping(
+        env,
+        make_potential(potential, **dict(potential_kwargs or {})).rescaled(potential_scale),
+        None,
+        gamma=gamma,
+        plans=plans,
     )

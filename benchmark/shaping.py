@@ -32,6 +32,7 @@ Example:
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any, SupportsFloat
 
 import gymnasium
@@ -51,6 +52,10 @@ class PotentialShaping(gymnasium.Wrapper):
         gamma: the learner's discount, 0 < γ ≤ 1. Required: a shaping γ that differs from the
             learner's changes the optimal policy.
         geometry: the task's ``locate``/``positions`` hooks, for potentials that use distances.
+        plans: for a task-instance distribution, instance -> (progress, geometry): on every
+            ``reset`` the wrapper reads the episode's instance from ``info["instance"]`` and
+            shapes the episode with that instance's plan (``progress`` and ``geometry`` are then
+            those of the current episode). The plan changes only on ``reset``.
 
     ``info`` gains, on every step: ``reward_original`` (the reward before shaping),
     ``shaping`` (F), ``potential`` (φ of the new state as used in F), ``progress`` (max_idx);
@@ -62,19 +67,23 @@ class PotentialShaping(gymnasium.Wrapper):
         self,
         env: gymnasium.Env,
         potential: Potential,
-        progress: PlanProgress,
+        progress: PlanProgress | None,
         *,
         gamma: float,
         geometry: Geometry | None = None,
+        plans: Callable[[Any], tuple[PlanProgress, Geometry | None]] | None = None,
     ):
         super().__init__(env)
         if isinstance(gamma, bool) or not isinstance(gamma, int | float) or not 0 < gamma <= 1:
             raise BadInputError(
                 f"gamma must be a number in (0, 1], the learner's discount; got {gamma!r}"
             )
+        if progress is None and plans is None:
+            raise BadInputError("PotentialShaping needs a plan's progress, or plans per instance")
         self.potential = potential
         self.progress = progress
         self.geometry = geometry
+        self._plans = plans
         self.shaping_gamma = float(gamma)
         self._max_idx = 0
         self._t = 0
@@ -94,6 +103,13 @@ class PotentialShaping(gymnasium.Wrapper):
 
     def reset(self, **kwargs: Any) -> tuple[Any, dict[str, Any]]:
         obs, info = self.env.reset(**kwargs)
+        if self._plans is not None:
+            if info.get("instance") is None:
+                raise BadInputError(
+                    f"{self.env}: shaping per instance needs info['instance'] from reset; the "
+                    "environment reported none"
+                )
+            self.progress, self.geometry = self._plans(info["instance"])
         self._t = 0
         self._max_idx = int(self.progress.initial(obs))
         self._phi_prev = self._phi(obs)

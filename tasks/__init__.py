@@ -28,6 +28,7 @@ register_task(
         max_episode_steps=50,
         description="move the end effector around a wall to a goal in the plane and stay there",
         kwargs={"version": "v1"},
+        fixed=True,
     )
 )
 register_task(
@@ -44,6 +45,7 @@ register_task(
         max_episode_steps=40,
         description="push a cylinder to a goal with the end effector",
         kwargs={"version": "v1"},
+        fixed=True,
     )
 )
 register_task(
@@ -59,8 +61,64 @@ register_task(
         max_episode_steps=50,
         description="reach a goal inside three walls, entering from above",
         kwargs={"version": "v1"},
+        fixed=True,
     )
 )
+# ---- task-instance distributions of the v1 planar tasks -----------------------------------------
+# Every episode is one instance (start, goal and, in push, the object's start) from a fixed,
+# seeded training set; the benchmark evaluates on the disjoint held-out set. The goal is part of
+# the observation, and each instance's PDDL problem is planned by Fast Downward (cached).
+
+register_task(
+    TaskSpec(
+        id="planshape/ReachRandomized-v1",
+        env_entry_point="planshape.tasks.planar.reach:ReachEnv",
+        models={
+            "single": "planshape.tasks.planar.instances:reach_single",
+            "multi": "planshape.tasks.planar.instances:reach_multi",
+            "grid": "planshape.tasks.planar.instances:reach_grid",
+        },
+        default_model="grid",
+        max_episode_steps=50,
+        description="reach around the wall to a goal drawn behind it, from a start drawn below it",
+        kwargs={"version": "v1"},
+        instances="planshape.tasks.planar.instances:reach_instances",
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/PushRandomized-v1",
+        env_entry_point="planshape.tasks.planar.push:PushEnv",
+        models={
+            "single": "planshape.tasks.planar.instances:push_single",
+            "multi": "planshape.tasks.planar.instances:push_multi",
+            "grid": "planshape.tasks.planar.instances:push_grid",
+            "grid-diagonal": "planshape.tasks.planar.instances:push_grid_diagonal",
+        },
+        default_model="grid",
+        max_episode_steps=60,
+        description="push the cylinder to a drawn goal from a drawn start, two or more cells away",
+        kwargs={"version": "v1"},
+        instances="planshape.tasks.planar.instances:push_instances",
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MazeReachRandomized-v1",
+        env_entry_point="planshape.tasks.planar.maze_reach:MazeReachEnv",
+        models={
+            "single": "planshape.tasks.planar.instances:maze_reach_single",
+            "multi": "planshape.tasks.planar.instances:maze_reach_multi",
+            "grid": "planshape.tasks.planar.instances:maze_reach_grid",
+        },
+        default_model="grid",
+        max_episode_steps=60,
+        description="reach a goal drawn inside the walls from a start drawn outside them",
+        kwargs={"version": "v1"},
+        instances="planshape.tasks.planar.instances:maze_reach_instances",
+    )
+)
+
 # ---- v0 of the planar tasks (stored runs) --------------------------------------------------------
 # Reach without the paper's wall, push with a square box, straight-distance dense rewards.
 
@@ -76,6 +134,7 @@ register_task(
         default_model="grid",
         max_episode_steps=40,
         description="move the end effector to a goal in the plane and stay there",
+        fixed=True,
     )
 )
 register_task(
@@ -91,6 +150,7 @@ register_task(
         default_model="grid",
         max_episode_steps=40,
         description="push a box to a goal with the end effector",
+        fixed=True,
     )
 )
 register_task(
@@ -105,16 +165,30 @@ register_task(
         default_model="grid",
         max_episode_steps=50,
         description="reach a goal inside three walls, entering from above",
+        fixed=True,
     )
 )
 
 # ---- MetaWorld v3 ------------------------------------------------------------------------------
 
+# reach-v4 observes MetaWorld's tcp_center (in the unused second object's slot), so that its
+# plan's last subgoal holds on the step of MetaWorld's success; -v3 (estimated from the hand,
+# 2-5 steps late) stays for the runs stored with it.
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-reach-v4",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.reach:stages"},
+        max_episode_steps=500,
+        description="MetaWorld reach-v3 with the fingertip centre observed: move it to a goal",
+        kwargs={"env_name": "reach-v3", "observe_tcp": True},
+    )
+)
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-reach-v3",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-        models={"stages": "planshape.tasks.metaworld.reach:stages"},
+        models={"stages": "planshape.tasks.metaworld.reach:stages_v3"},
         max_episode_steps=500,
         description="MetaWorld reach-v3: move the fingertips to a goal position",
         kwargs={"env_name": "reach-v3"},

@@ -5,7 +5,13 @@ whose stack of wrappers re-samples one of 50 pre-drawn goals on every reset with
 generator and lets the inner environment raise when stepped past its horizon):
 
 * **Observation**: MetaWorld's 39-dimensional ``Box`` with the goal position visible in
-  ``obs[36:39]``, as in MT1 (see :mod:`planshape.tasks.metaworld.observation`).
+  ``obs[36:39]``, as in MT1, and, with ``observe_tcp=True`` on a task with one object, the
+  fingertip centre ``tcp_center`` in the second object's otherwise zero-padded slot
+  ``obs[11:14]`` (and one step earlier in ``obs[29:32]``, by MetaWorld's own frame stacking).
+  MetaWorld's success tests measure from ``tcp_center``, which the other numbers do not
+  determine (see :mod:`planshape.tasks.metaworld.observation`); with it observed, a classifier
+  can test exactly what ``info["success"]`` tests. MetaWorld's scripted experts and its
+  ``evaluate_state`` do not read that slot.
 * **Reward**: ``reward="sparse"`` pays ``float(info["success"])``; ``reward="dense"`` is
   MetaWorld's own (v2) shaped reward, in [0, 10].
 * **Seeding**: ``reset(seed=s)`` seeds the task's generator, which draws the object and goal
@@ -32,6 +38,7 @@ Example:
 
 from __future__ import annotations
 
+import types
 from typing import Any, ClassVar, SupportsFloat
 
 import gymnasium
@@ -63,6 +70,33 @@ def _door_distance(obs: np.ndarray, _info: dict[str, Any]) -> float:
 DISTANCES = {"door-open-v3": _door_distance}
 
 
+def _observe_tcp(sim: Any) -> bool:
+    """Make ``sim``'s per-frame observation carry ``tcp_center`` in the second object's slot.
+
+    The 18 numbers of one frame come from ``_get_curr_obs_combined_no_goal``, which ``_get_obs``
+    calls for the current frame and remembers as the previous one, so wrapping it (on this
+    instance) puts the fingertip centre in both frames, in the step's observation, in the
+    observation MetaWorld's ``evaluate_state`` is given and in the last stable observation it
+    returns after a simulator exception. It is read after the same ``mj_forward`` as the
+    ``tcp_center`` of MetaWorld's reward and success, so the two are the same numbers.
+
+    Returns whether the slot was free (tasks with a second object keep MetaWorld's layout).
+    """
+    if len(sim._get_pos_objects()) + len(sim._get_quat_objects()) > 7:
+        return False  # a second object fills obs[11:18]
+    # A bound method, not a closure, so that a deep copy of the simulator reads its own state.
+    sim._get_curr_obs_combined_no_goal = types.MethodType(_frame_with_tcp, sim)
+    sim._prev_obs = sim._get_curr_obs_combined_no_goal()
+    return True
+
+
+def _frame_with_tcp(sim: Any) -> np.ndarray:
+    """MetaWorld's 18 numbers of one frame, with ``tcp_center`` in ``[11:14]``."""
+    combined = type(sim)._get_curr_obs_combined_no_goal(sim)
+    combined[layout.TCP] = sim.tcp_center
+    return combined
+
+
 class MetaWorldTask(gymnasium.Env):
     """A MetaWorld v3 task with a sparse or dense reward (see the module docstring).
 
@@ -76,8 +110,12 @@ class MetaWorldTask(gymnasium.Env):
         max_path_length: steps after which MetaWorld truncates the episode; keep it equal to
             the ``max_episode_steps`` given to ``gymnasium.make``.
         render_mode: passed to MetaWorld (``"rgb_array"``, ``"human"``, …).
+        observe_tcp: write ``tcp_center`` into ``obs[11:14]`` (a task with one object only).
         **env_kwargs: further keyword arguments of the MetaWorld environment class (camera,
             image size).
+
+    Attributes:
+        observes_tcp: whether ``obs[11:14]`` holds ``tcp_center`` (``observe_tcp=True``).
     """
 
     metadata: ClassVar[dict[str, Any]] = {"render_modes": ["human", "rgb_array", "depth_array"]}
@@ -88,6 +126,7 @@ class MetaWorldTask(gymnasium.Env):
         reward: str = "sparse",
         max_path_length: int = 500,
         render_mode: str | None = None,
+        observe_tcp: bool = False,
         **env_kwargs: Any,
     ):
         if env_name not in ALL_V3_ENVIRONMENTS:
@@ -108,6 +147,12 @@ class MetaWorldTask(gymnasium.Env):
         sim._freeze_rand_vec = False
         sim.seeded_rand_vec = True
         sim.max_path_length = max_path_length
+        self.observes_tcp = bool(observe_tcp) and _observe_tcp(sim)
+        if observe_tcp and not self.observes_tcp:
+            raise BadInputError(
+                f"{env_name}: observe_tcp=True needs the second object's slot obs[11:18], which "
+                "this task uses; make it with observe_tcp=False"
+            )
         self.sim = sim
         self.env_name = env_name
         self.reward_variant = reward

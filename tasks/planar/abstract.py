@@ -315,7 +315,9 @@ def _waypoint_places(task: str) -> list[Places]:
     return waypoint_tables(PLACES[task])
 
 
-def planar_model(domain: str, problem_path, places: list[Places], entities) -> AbstractModel:
+def planar_model(
+    domain: str, problem_path, places: list[Places], entities, domain_file: str = "domain.pddl"
+) -> AbstractModel:
     """The abstract model of a planar task: ``domain``'s shipped domain file, a problem file,
     one :class:`InPlace` classifier per entity predicate over ``places``, and the geometry
     hooks."""
@@ -325,7 +327,7 @@ def planar_model(domain: str, problem_path, places: list[Places], entities) -> A
         for in_place in [InPlace(places, position, arg)]
     }
     return AbstractModel(
-        domain=pddl_file(domain, "domain.pddl"),
+        domain=pddl_file(domain, domain_file),
         problem=problem_path,
         classifiers=classifiers,
         geometry=PlanarGeometryHooks(places, entities),
@@ -482,8 +484,11 @@ def push_grid_problem(
     the cell opposite the box may also slide the box one cell sideways (the end effector
     moves diagonally and the box follows it along the pushed face by friction); the end
     effector ends behind the box's new cell either way. A ``round_object`` (the paper's
-    cylinder) has no faces: a sphere pushes it along the line of their centres, so with
-    ``diagonal`` it is pushed from any of its 8 neighbours straight on, and never slid.
+    cylinder) is pushed along the line of centres, so it is never slid; it is pushed from its 4
+    neighbours only (from a diagonal neighbour, 1.41 cells away, the push would start late and
+    leave it 0.4 cells short of the next cell's centre); and since the end effector's diagonal
+    move past it would touch it, such a move is a ``(diagonal from to side1 side2)`` fact of
+    ``domain-v1.pddl``, free only when the object is in neither side cell.
     """
     names = _grid_names("push")
     rows, cols = grid.shape
@@ -495,15 +500,20 @@ def push_grid_problem(
     ]
     steps = ((-1, 0), (1, 0), (0, -1), (0, 1))
     moves = steps + (((-1, -1), (-1, 1), (1, -1), (1, 1)) if diagonal else ())
-    pushed_from = moves if round_object else steps
     slides = (0,) if round_object else _SLIDES[diagonal]
     for r, c in sorted(inside):
         for dr, dc in moves:
             ahead = (r + dr, c + dc)
-            if ahead in inside:
+            sides = ((r + dr, c), (r, c + dc))
+            if round_object and (dr, dc) not in steps:
+                # a diagonal move passes the two cells beside it (domain-v1.pddl)
+                if ahead in inside and all(side in inside for side in sides):
+                    a, b = (name[side] for side in sides)
+                    facts.append(f"(diagonal {name[(r, c)]} {name[ahead]} {a} {b})")
+            elif ahead in inside:
                 facts.append(f"(neighbors {name[(r, c)]} {name[ahead]})")
-            if (dr, dc) not in pushed_from:
-                continue  # a box is pushed from a face, never from a corner
+            if (dr, dc) not in steps:
+                continue  # pushed from a face (or, a cylinder, from a 4-neighbour), not a corner
             for slide in slides:
                 # sideways is perpendicular to the push direction (dr, dc)
                 sr, sc = slide * dc, slide * dr
@@ -546,7 +556,9 @@ def push_grid(
             grid, ee_start, box_start, diagonal=diagonal, goal=goal, round_object=round_object
         ),
     )
-    return planar_model("push", problem, [grid.places(_grid_names("push"))], PUSH_ENTITIES)
+    domain = "domain-v1.pddl" if round_object and diagonal else "domain.pddl"
+    places = [grid.places(_grid_names("push"))]
+    return planar_model("push", problem, places, PUSH_ENTITIES, domain_file=domain)
 
 
 def push_grid_diagonal() -> AbstractModel:

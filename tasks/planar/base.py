@@ -61,6 +61,11 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         version: ``"v0"`` or ``"v1"``, the geometry and physics of that task version (see
             :mod:`planshape.tasks.planar.versions`).
         geometry: a custom geometry instead of the version's.
+        instances: ``None`` (a fixed task), or ``"train"`` / ``"eval"``: every episode is one
+            instance of the task's distribution (:mod:`planshape.tasks.planar.instances`), drawn
+            from that set with ``self.np_random``, or chosen with ``reset(options={"instance":
+            k})``. The goal is then appended to the observation (one policy for every goal),
+            and ``info["instance"]`` holds the episode's :class:`Instance`.
     """
 
     metadata: ClassVar[dict[str, Any]] = {
@@ -84,6 +89,7 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         render_mode: str | None = None,
         version: str = "v0",
         geometry: PlanarGeometry | None = None,
+        instances: str | None = None,
     ) -> None:
         if reward not in REWARD_VARIANTS:
             raise UnknownIdError(
@@ -117,9 +123,19 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         (self._x_lo, self._y_lo) = geometry.workspace.low
         (self._x_hi, self._y_hi) = geometry.workspace.high
         self._dense = reward == "dense"
+        self._instances: tuple[Any, ...] = ()
+        if instances is not None:
+            from planshape.tasks.planar.instances import instance_set
+
+            self._instances = instance_set(self.task).split(instances)
+        self.instance: Any = None
+        """This episode's instance (None for a fixed task)."""
         self._goal = np.array(self._default_goal(), dtype=np.float64)
         self._gx, self._gy = float(self._goal[0]), float(self._goal[1])
         self._rejecting_walls = self.walls if self.wall_contact == "reject" else ()
+        #: v1 computes a move's target from the position clipped to the workspace (what the
+        #: learner observes); v0 from the raw position, kept for its stored runs
+        self._target_from_observation = version != "v0"
         self._reach_clearance = float(geometry.ee_radius)
         self._detour_reached = False
         #: the task distance after the previous step (the paper's push reward reads it)
@@ -130,7 +146,7 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         self.observation_space = spaces.Box(low, high, dtype=np.float32)
         self._obs_bounds = (low.astype(np.float64).tolist(), high.astype(np.float64).tolist())
         # A view of the observed coordinates in MjData (its buffers never move).
-        self._qpos_obs = self._data.qpos[: low.shape[0]]
+        self._qpos_obs = self._data.qpos[: self._model.nq]
 
     # ---- hooks -------------------------------------------------------------------------------
 
@@ -203,6 +219,9 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
             bb = self.geometry.box_bounds
             low += bb.low
             high += bb.high
+        if self._instances:  # the goal, which changes between instances
+            low += ws.low
+            high += ws.high
         return np.array(low, dtype=np.float32), np.array(high, dtype=np.float32)
 
     def _ee_start_ok(self, ee: np.ndarray) -> bool:
@@ -215,6 +234,8 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         # The servo overshoots its target by micrometres at most, but an observation on a
         # bound must stay inside the space: clip (in Python: cheaper than numpy for 2-4 values).
         lo, hi = self._obs_bounds
+        if self._instances:
+            q = [*q, self._gx, self._gy]
         clipped = [min(max(a, a_lo), a_hi) for a, a_lo, a_hi in zip(q, lo, hi, strict=True)]
         return np.array(clipped, dtype=np.float32)
 
@@ -267,26 +288,33 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
 
         ``options`` may override this episode's positions: ``"goal"``, ``"ee_start"`` and, in
         push, ``"box_start"`` (each an (x, y) pair); they take precedence over the
-        ``randomize_*`` draws.
+        ``randomize_*`` draws. With instances, ``"instance"`` (an index into the set) chooses
+        the episode's instance, and ``"ee_start"``/``"box_start"`` still apply on top.
         """
         super().reset(seed=seed)
         options = options or {}
         self._detour_reached = False
         model, data = self._model, self._data
         mujoco.mj_resetData(model, data)
-
-        if "goal" in options:
-            self._goal = np.array(options["goal"], dtype=np.float64).reshape(2)
-        elif self.randomize_goal:
-            self._goal = np.asarray(self._sample_goal(), dtype=np.float64)
+        if "instance" in options and not self._instances:
+            raise BadInputError(f"{self.task}: option 'instance' needs instances='train'/'eval'")
+        if self._instances:
+            self.instance = self._chosen_instance(options)
+            self._set_goal(self.instance.goal)
+            data.qpos[0:2] = self.instance.ee_start
+            if self.has_box:
+                data.qpos[2:4] = self.instance.box_start
         else:
-            self._goal = np.array(self._default_goal(), dtype=np.float64)
-        self._gx, self._gy = float(self._goal[0]), float(self._goal[1])
-
-        if self.randomize_start:
-            self._sample_start()
-        else:
-            self._set_default_start()
+            if "goal" in options:
+                self._set_goal(np.asarray(options["goal"], dtype=np.float64).reshape(2))
+            elif self.randomize_goal:
+                self._set_goal(self._sample_goal())
+            else:
+                self._set_goal(self._default_goal())
+            if self.randomize_start:  # after the goal: a start is drawn clear of it
+                self._sample_start()
+            else:
+                self._set_default_start()
         if "ee_start" in options:
             data.qpos[0:2] = np.asarray(options["ee_start"], dtype=np.float64).reshape(2)
         if "box_start" in options:
@@ -307,7 +335,28 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         q = self._qpos_obs.tolist()
         distance = self._task_distance(q)
         self._previous_distance = distance
-        return self._observation(q), self._info(q, distance, distance < self._threshold, False)
+        info = self._info(q, distance, distance < self._threshold, False)
+        if self.instance is not None:
+            info["instance"] = self.instance
+        return self._observation(q), info
+
+    def _set_goal(self, goal: Any) -> None:
+        self._goal = np.array(goal, dtype=np.float64).reshape(2)
+        self._gx, self._gy = float(self._goal[0]), float(self._goal[1])
+
+    def _chosen_instance(self, options: dict[str, Any]) -> Any:
+        """This episode's instance: ``options["instance"]`` (an index into the set), or one
+        drawn with ``self.np_random``."""
+        n = len(self._instances)
+        if "instance" in options:
+            k = options["instance"]
+            if isinstance(k, bool) or not isinstance(k, int | np.integer) or not 0 <= k < n:
+                raise BadInputError(
+                    f"{self.task}: option 'instance' must be an index in [0, {n}), not {k!r}"
+                )
+        else:
+            k = int(self.np_random.integers(n))
+        return self._instances[int(k)]
 
     def _set_default_start(self) -> None:
         self._data.qpos[0:2] = self.geometry.ee_start
@@ -318,6 +367,11 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         False."""
         data = self._data
         x, y = data.qpos[0:2].tolist()
+        if self._target_from_observation:
+            # the servo may rest micrometres past a workspace bound; from there a move with no
+            # component across the bound would count as leaving the workspace
+            x = min(max(x, self._x_lo), self._x_hi)
+            y = min(max(y, self._y_lo), self._y_hi)
         ax, ay = action
         ax = float(ax)
         ay = float(ay)

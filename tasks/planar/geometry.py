@@ -26,6 +26,7 @@ Example:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
@@ -89,6 +90,20 @@ class Rect:
     def sample(self, rng: np.random.Generator) -> np.ndarray:
         """A point drawn uniformly from the rectangle."""
         return rng.uniform(self.low, self.high)
+
+
+@dataclass(frozen=True)
+class Disc:
+    """A disc in the plane (push's cylinder seen from above), with the :meth:`Rect.distance`
+    of a rectangle, so that either can be an obstacle."""
+
+    center: Point
+    radius: float
+
+    def distance(self, point: Sequence[float]) -> float:
+        """Euclidean distance from ``point`` to the disc (0 inside)."""
+        gap = math.hypot(float(point[0]) - self.center[0], float(point[1]) - self.center[1])
+        return max(gap - self.radius, 0.0)
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ from typing import Any
 import gymnasium
 import numpy as np
 
-from planshape.tasks.planar.geometry import GEOMETRY, PlanarGeometry, Rect
+from planshape.tasks.planar.geometry import GEOMETRY, Disc, PlanarGeometry, Rect
 
 Oracle = Callable[..., np.ndarray]
 
@@ -336,7 +336,8 @@ def route(
 
     def free(node: tuple[int, int]) -> bool:
         p = point(node)
-        return workspace.contains(p) and not _blocked(p, walls, clearance)
+        # a millimetre inside the workspace: a move onto its bound may round to just outside
+        return workspace.contains(p, margin=-0.001) and not _blocked(p, walls, clearance)
 
     origin = (0, 0)
     parent: dict[tuple[int, int], tuple[int, int] | None] = {origin: None}
@@ -375,25 +376,32 @@ def route(
     return kept
 
 
-def walk_plan(env: gymnasium.Env, max_steps: int, *, seed: int = 0) -> tuple[list[int], bool]:
+def walk_plan(
+    env: gymnasium.Env,
+    max_steps: int,
+    *,
+    seed: int | None = 0,
+    options: dict[str, Any] | None = None,
+) -> tuple[list[int], bool]:
     """Walk a shaped planar environment through its plan's subgoal locations, in order.
 
     ``env`` must be shaped (``reward="shaped"``): for each subgoal of the plan in turn, the
     controller asks the task's ``locate`` hook where the end effector must be and heads there
-    until it is within a millimetre: around the walls by the shortest way (:func:`route`)
-    without a box, straight with one (what a push needs).
+    until it is within a millimetre: straight when the subgoal moves the box (a push), else by
+    the shortest way (:func:`route`) around the walls and the box.
 
-    Returns the shaping wrapper's progress after every step and whether the task's own success
-    held at the end. This is the check that a PDDL model and its classifiers agree with the
-    world: the plan, executed through the classifiers, must reach the goal.
+    ``seed`` and ``options`` go to ``reset`` (e.g. ``{"instance": k}``). Returns the shaping
+    wrapper's progress after every step and whether the task's own success held at the end.
+    This is the check that a PDDL model and its classifiers agree with the world: the plan,
+    executed through the classifiers, must reach the goal.
     """
+    obs, info = env.reset(seed=seed, options=options)
+    # read after the reset: a task-instance distribution shapes each episode with its own plan
     shaping = env.get_wrapper_attr("progress")
     geometry = env.get_wrapper_attr("geometry")
     base = env.unwrapped
-    step = base.geometry.step_size
-    walls = () if base.has_box else base.walls
-    clear = base.geometry.ee_radius + 0.002
-    obs, info = env.reset(seed=seed)
+    g = base.geometry
+    step, clear = g.step_size, g.ee_radius + 0.002
     progress = [info["progress"]]
     subgoal, waypoints = 1, []
     for _ in range(max_steps):
@@ -404,7 +412,23 @@ def walk_plan(env: gymnasium.Env, max_steps: int, *, seed: int = 0) -> tuple[lis
             target = np.asarray(geometry.locate(shaping.subgoals[subgoal])["ee"], dtype=float)
             waypoints = []
         if not waypoints:
-            waypoints = route(here, target, walls, clear, base.geometry.workspace)
+            # a place on the workspace's bound (the paper's (0.23, 0.15)) is aimed at from a
+            # tenth of a millimetre inside: a move onto the bound may round to just outside
+            (lx, ly), (hx, hy) = g.workspace.low, g.workspace.high
+            target = np.clip(target, (lx + 1e-4, ly + 1e-4), (hx - 1e-4, hy - 1e-4))
+            before, after = (geometry.locate(shaping.subgoals[i]) for i in (subgoal - 1, subgoal))
+            pushing = "box" in after and not np.array_equal(before.get("box"), after["box"])
+            obstacles = list(base.walls)
+            if base.has_box and not pushing:  # keep clear of the box (a few mm of slack)
+                box = (float(obs[2]), float(obs[3]))
+                if g.object_radius is None:
+                    half = g.box_half_size - 0.005
+                    obstacles.append(Rect.from_center(box, (half, half)))
+                else:
+                    obstacles.append(Disc(box, g.object_radius - 0.005))
+            waypoints = (
+                [tuple(target)] if pushing else route(here, target, obstacles, clear, g.workspace)
+            )
         while len(waypoints) > 1 and np.abs(np.asarray(waypoints[0]) - here).max() < 1e-3:
             waypoints.pop(0)
         obs, _, terminated, truncated, info = env.step(_toward(here, waypoints[0], step))

@@ -14,9 +14,9 @@ obstacles, and the grids of :mod:`planshape.tasks.planar.abstract` on the paper'
   distance (0.07 m); ``grid`` and ``grid-diagonal``: the Sokoban-like grids with cells of
   :data:`PUSH_CELL` (0.075 m), just wider than the contact distance, so that the end effector
   in the cell behind the object does not touch it until it pushes, and the paper's object start
-  is a cell centre (it is 2 and 4 cells from the goal). The cylinder has no faces, so
-  ``grid-diagonal`` pushes it from any of its 8 neighbour cells straight on (v0's box is pushed
-  from a face and may slide sideways).
+  is a cell centre (it is 2 and 4 cells from the goal). In ``grid-diagonal`` the end effector
+  moves between 8-adjacent cells, but not diagonally past the cylinder, and pushes it from its
+  4 neighbours only, straight on (v0's box may also slide sideways along a pushed face).
 
 Every model is built for one instance (start, goal and, in push, the object's start): the
 registered factories build the paper's fixed instance; the randomized tasks build each of

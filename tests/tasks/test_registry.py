@@ -124,9 +124,10 @@ def test_one_observation_classification_agrees_with_the_batch_path(task: str, mo
     """The shaping wrapper classifies one observation per step through ``holding`` (sparse,
     Python) and batches through arrays; both must give the same atoms on visited states."""
     env = make(task, f"shaped:{model}")
+    observations, _ = rollout(env, seed=0, steps=60)
+    # after the reset: a task-instance distribution binds the episode's instance's plan
     abstraction = env.get_wrapper_attr("progress").abstraction
     evaluator = abstraction.evaluator(abstraction.fluent_atoms)
-    observations, _ = rollout(env, seed=0, steps=60)
     env.observation_space.seed(0)
     observations += [env.observation_space.sample() for _ in range(60)]
     for obs in observations:
