@@ -72,7 +72,11 @@ def _bench(parser: argparse.ArgumentParser) -> Handler:
     )
     parser.add_argument("--profile", default="default", help="profile (default: %(default)s)")
     parser.add_argument(
-        "--out", type=Path, default=Path(RESULTS_FOLDER), help="results and leaderboard folder"
+        "--out",
+        type=Path,
+        default=None,
+        help="results and leaderboard folder (default: the profile's own, leaderboard/ for the "
+        "default profile and leaderboard/<profile>/ for any other)",
     )
     parser.add_argument(
         "--potential",
@@ -102,7 +106,11 @@ def run_bench(args: argparse.Namespace) -> int:
     from planshape.suite.session import parse_seeds, resolve_tasks
 
     # bad input is reported before anything starts
-    get_profile(args.profile)
+    profile = get_profile(args.profile)
+    if profile.archived:
+        raise BadInputError(f"--profile {profile.name} cannot be run: {profile.archived}")
+    args.out = args.out if args.out is not None else Path(profile.folder)
+    check_store(args.out, profile.name)
     resolve_tasks(args.tasks)
     parse_seeds(args.seeds)
     if args.workers < 0:
@@ -120,6 +128,37 @@ def run_bench(args: argparse.Namespace) -> int:
     return 0 if status == pytest.ExitCode.OK else 1
 
 
+def check_store(out: Path, profile: str) -> None:
+    """Refuse, before anything trains, a results folder that holds runs of another profile or
+    of another evaluation protocol: new runs would mix into them.
+
+    Example:
+        >>> import tempfile
+        >>> check_store(Path(tempfile.mkdtemp()), "smoke")  # an empty folder is fine
+    """
+    from planshape.runner import EVAL_PROTOCOL
+
+    runs = out / "runs"
+    found: dict[tuple[str, int], str] = {}
+    for path in sorted(runs.glob("*.jsonl")) if runs.is_dir() else ():
+        try:
+            with path.open(encoding="utf-8") as f:
+                first = json.loads(f.readline() or "{}")
+        except (OSError, json.JSONDecodeError):
+            continue  # a damaged file is reported (and redone) by the store, not here
+        if isinstance(first, dict) and "profile" in first:
+            found.setdefault((str(first["profile"]), int(first.get("eval_protocol", 1))), path.name)
+    foreign = {k: v for k, v in found.items() if k != (profile, EVAL_PROTOCOL)}
+    if foreign:
+        (other, protocol), example = min(foreign.items())
+        raise BadInputError(
+            f"{out}: holds runs of profile {other!r} evaluated with protocol {protocol} (e.g. "
+            f"runs/{example}); new runs of profile {profile!r} (protocol {EVAL_PROTOCOL}) would "
+            "mix into them. Choose another --out, or leave --out out to use the profile's own "
+            "folder"
+        )
+
+
 def _check_submission(reference: str) -> None:
     """Make the potential (import errors are bad input) and print its invariance verdict."""
     from planshape.invariance import check_potential
@@ -129,6 +168,14 @@ def _check_submission(reference: str) -> None:
     report = check_potential(reference)
     verdict = "preserves" if report.preserved else "DOES NOT preserve"
     print(f"invariance: {reference} {verdict} the optimal policy on every toy MDP", flush=True)
+
+
+def _profile_of(out: Path, rows: list[dict]) -> str:
+    """The profile whose folder ``out`` is, else the last profile the rows name."""
+    for profile in PROFILES.values():
+        if Path(profile.folder).resolve() == out.resolve():
+            return profile.name
+    return sorted({r["profile"] for r in rows})[-1]
 
 
 @subcommand("leaderboard", "render the leaderboard again from the stored results")
@@ -148,12 +195,11 @@ def run_leaderboard(args: argparse.Namespace) -> int:
     rows = load_rows(args.out)
     if not rows:
         raise BadInputError(f"{args.out}: no stored results (runs/*.jsonl); run planshape bench")
-    profiles = sorted({r["profile"] for r in rows})
-    profile = get_profile(args.profile or profiles[-1])
+    profile = get_profile(args.profile or _profile_of(args.out, rows))
     header = {
         "profile": profile.name,
         "description": profile.description,
-        "command": f"planshape bench --profile {profile.name}",
+        "command": profile.archived or f"planshape bench --profile {profile.name}",
         "caveats": list(profile.caveats),
         "eval_every": profile.eval_every,
         "eval_episodes": profile.eval_episodes,

@@ -14,12 +14,21 @@ from collections.abc import Iterable
 from typing import Any
 
 from planshape.cli import Handler, subcommand
-from planshape.registration import REWARDS, abstract_model, task_ids, task_spec
+from planshape.registration import (
+    REWARDS,
+    abstract_model,
+    instances_summary,
+    task_ids,
+    task_spec,
+)
 
 
 def describe_tasks(ids: Iterable[str] | None = None) -> list[dict[str, Any]]:
-    """One JSON-ready row per task: id, description, horizon, reward variants, and per model the
-    PDDL files and the fluent predicates its classifiers decide."""
+    """One JSON-ready row per task: id, description, horizon, reward variants, its instances
+    (``None`` for a fixed task, ``{"train": N, "eval": M}`` for a task-instance distribution,
+    whose models are shown for its first training instance; ``"seeded"`` for a task that draws
+    its start from the seed), and per model the PDDL files and the fluent predicates its
+    classifiers decide."""
     rows = []
     for task_id in ids or task_ids():
         spec = task_spec(task_id)
@@ -39,6 +48,7 @@ def describe_tasks(ids: Iterable[str] | None = None) -> list[dict[str, Any]]:
                 "max_episode_steps": spec.max_episode_steps,
                 "rewards": list(REWARDS),
                 "default_model": spec.default_model,
+                "instances": None if spec.fixed else (instances_summary(spec) or "seeded"),
                 "models": models,
             }
         )
@@ -56,7 +66,12 @@ def _tasks(parser: argparse.ArgumentParser) -> Handler:
             print(json.dumps(rows, indent=2))
             return 0
         for row in rows:
-            print(f"{row['id']}  ({row['max_episode_steps']} steps)  {row['description']}")
+            instances = row["instances"]
+            if isinstance(instances, dict):
+                drawn = f", instances {instances['train']} train / {instances['eval']} held out"
+            else:
+                drawn = ", fixed start" if instances is None else ", start drawn from the seed"
+            print(f"{row['id']}  ({row['max_episode_steps']} steps{drawn})  {row['description']}")
             for name, model in row["models"].items():
                 default = " (default)" if name == row["default_model"] else ""
                 predicates = ", ".join(model["predicates"])

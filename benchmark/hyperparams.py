@@ -91,12 +91,20 @@ SAC_ROBOTICS: dict[str, Any] = {
     "policy_kwargs": {"net_arch": [256, 256]},
 }
 
+#: the planar families: the fixed tasks and their task-instance distributions
+PLANAR_FAMILIES = (
+    "Reach",
+    "Push",
+    "MazeReach",
+    *(f"{f}Randomized" for f in ("Reach", "Push", "MazeReach")),
+)
+
 #: (task family, algorithm) -> settings; the family is the part of the id before the first '-'
-#: or '_' after the namespace ("Reach", "Push", "MazeReach", "MetaWorld", "PointMaze", "Fetch…").
+#: or '_' after the namespace ("Reach", "PushRandomized", "MetaWorld", "PointMaze", "Fetch…").
 TABLE: dict[tuple[str, str], dict[str, Any]] = {
-    **{(f, "PPO"): PPO_PLANAR for f in ("Reach", "Push", "MazeReach")},
-    **{(f, "SAC"): SAC_PLANAR for f in ("Reach", "Push", "MazeReach")},
-    **{(f, "SAC-default"): SAC_DEFAULT for f in ("Reach", "Push", "MazeReach")},
+    **{(f, "PPO"): PPO_PLANAR for f in PLANAR_FAMILIES},
+    **{(f, "SAC"): SAC_PLANAR for f in PLANAR_FAMILIES},
+    **{(f, "SAC-default"): SAC_DEFAULT for f in PLANAR_FAMILIES},
     **{(f, "PPO"): PPO_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
     **{(f, "SAC"): SAC_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
 }

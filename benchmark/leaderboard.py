@@ -235,12 +235,16 @@ def _setup_items(header: Mapping[str, Any], info: Mapping[str, Any]) -> list[tup
     items += [
         ("Runs", f"{info['n_runs']} finished runs, {info['n_rows']} evaluation rows"),
         ("Seeds", f"{', '.join(map(str, info['seeds'])) or 'none'} ({per_entry_text})"),
-        (
-            "Evaluation episodes",
-            ", ".join(map(str, info["eval_episodes"]))
-            + " deterministic episodes per evaluation point",
-        ),
     ]
+    evaluations = info.get("evaluations") or {}
+    texts = {text for by_task in evaluations.values() for text in by_task}
+    if len(texts) == 1:
+        items.append(("Evaluation (deterministic policy)", f"each point: {texts.pop()}"))
+    else:
+        items += [
+            (f"Evaluation of {task} (deterministic policy)", f"each point: {'; '.join(by_task)}")
+            for task, by_task in evaluations.items()
+        ]
     if isinstance(header.get("eval_every"), int):
         items.append(("Evaluated every", f"{header['eval_every']:,} environment steps"))
     items += [

@@ -50,7 +50,7 @@ def probe(key: RunKey, chunks: int = 8, eval_episodes: int = 10) -> list[dict[st
     import torch
     from stable_baselines3.common.callbacks import BaseCallback
 
-    from planshape.runner import EVAL_SEED_OFFSET, evaluate, make_evaluation_env, make_learner
+    from planshape.runner import evaluate, evaluation_episodes, make_evaluation_env, make_learner
 
     if chunks < 1 or key.budget < chunks:
         raise BadInputError(
@@ -75,7 +75,7 @@ def probe(key: RunKey, chunks: int = 8, eval_episodes: int = 10) -> list[dict[st
         target = key.budget * (chunk + 1) // chunks
         model.learn(target - model.num_timesteps, reset_num_timesteps=False, callback=EpisodeEnds())
         logged = model.logger.name_to_value
-        scores = evaluate(model, eval_env, eval_episodes, EVAL_SEED_OFFSET)
+        scores = evaluate(model, eval_env, evaluation_episodes(key.task, eval_episodes))
         rows.append(
             {
                 "step": int(model.num_timesteps),

@@ -4,26 +4,37 @@ A profile is a list of blocks; a block is a grid of tasks × reward entries × a
 seeds with one training budget (environment steps) per task. An *entry* is ``"sparse"``,
 ``"dense"`` or ``"<potential>/<model>"``: a potential shaped from one PDDL granularity.
 
-==========  ================================================================================
-profile     what it runs
-==========  ================================================================================
-smoke       reach, three entries, PPO, one seed, 4k steps (about a minute; a test runs it)
-default     the source paper's grid with PPO × 5 seeds, plus SAC on the main entries ×
-            2 seeds (5 on push), plus the planning-derived potentials on the grid models and
-            the goal-distance control × PPO × 5 seeds — what ``tox -e bench`` runs; 3.1 h
-            of runs, about 95 minutes on 2 cores
-paper       the source paper's full grid: reach, push, maze-reach × {sparse, dense, 3
-            potentials × 3 models} × PPO, SAC and SAC-default × 5 seeds
-full        ``paper`` plus MetaWorld and gymnasium-robotics tasks
-metaworld   the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} × PPO × 2 seeds
-            at 102k steps: the part of ``full``'s MetaWorld block that 2 CPU cores train in
-            about 80 minutes (``full`` needs days there, see :data:`METAWORLD_PROFILE`)
-==========  ================================================================================
+============  ==============================================================================
+profile       what it runs (results folder)
+============  ==============================================================================
+smoke         reach, three entries, PPO, one seed, 4k steps (about a minute; a test runs it)
+default       the source paper's grid on its tasks (v1) with PPO × 5 seeds, plus SAC on the
+              main entries × 2 seeds (5 on push), plus the planning-derived potentials on the
+              grid models and the goal-distance control × PPO × 5 seeds — what
+              ``tox -e bench`` runs (``leaderboard/``)
+instances     the task-instance distributions × {sparse, dense, plan-based, plan-distance,
+              plan-path, goal-distance} × PPO × 5 seeds, scored on the held-out instances
+paper         the source paper's full grid: reach, push, maze-reach × {sparse, dense, 3
+              potentials × 3 models} × PPO, SAC and SAC-default × 5 seeds
+full          ``paper`` plus MetaWorld and gymnasium-robotics tasks
+metaworld     the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} × PPO ×
+              2 seeds at 102k steps: the part of ``full``'s MetaWorld block that 2 CPU cores
+              train in about 80 minutes (``full`` needs days there, see
+              :data:`METAWORLD_PROFILE`)
+default-v0    archived: ``default`` on the v0 tasks, evaluated with protocol 1, kept for its
+              stored runs (``leaderboard/default-v0/``); ``planshape bench`` refuses it
+metaworld-v0  archived: ``metaworld`` with reach-v3, protocol 1 (``leaderboard/metaworld-v0/``)
+============  ==============================================================================
+
+Every profile's results live in their own folder (:attr:`Profile.folder`): ``leaderboard/``
+for the default profile, ``leaderboard/<name>/`` for any other.
 
 Example:
     >>> runs = list(PROFILES["smoke"].runs())
     >>> len(runs), runs[0].task, runs[0].entry
-    (3, 'planshape/Reach-v0', 'sparse')
+    (3, 'planshape/Reach-v1', 'sparse')
+    >>> PROFILES["smoke"].folder, PROFILES["default"].folder
+    ('leaderboard/smoke', 'leaderboard')
 """
 
 from __future__ import annotations
@@ -34,8 +45,21 @@ from dataclasses import dataclass, field
 from planshape.errors import UnknownIdError
 from planshape.registration import task_spec
 
-PLANAR = ("planshape/Reach-v0", "planshape/Push-v0", "planshape/MazeReach-v0")
-PUSH = ("planshape/Push-v0",)
+#: the folder under which every profile's results are stored
+RESULTS_ROOT = "leaderboard"
+
+#: the planar tasks the profiles run: v1, the source paper's (reach behind its wall, push with
+#: its cylinder)
+PLANAR = ("planshape/Reach-v1", "planshape/Push-v1", "planshape/MazeReach-v1")
+PUSH = ("planshape/Push-v1",)
+#: the task-instance distributions of the v1 planar tasks (evaluated on held-out instances)
+RANDOMIZED = (
+    "planshape/ReachRandomized-v1",
+    "planshape/PushRandomized-v1",
+    "planshape/MazeReachRandomized-v1",
+)
+#: the v0 planar tasks of the archived ``default-v0`` profile
+PLANAR_V0 = ("planshape/Reach-v0", "planshape/Push-v0", "planshape/MazeReach-v0")
 PAPER_POTENTIALS = ("plan-based", "time-varying", "distance-varying")
 #: the source paper's granularities of the planar models
 PAPER_MODELS = ("single", "multi", "grid")
@@ -45,7 +69,7 @@ PLANNING_POTENTIALS = ("plan-distance", "plan-path", "h-star", "h-star-geodesic"
 GRID_MODELS = ("grid", "grid-diagonal")
 #: the control entry: the hand-crafted dense reward's distance as a potential
 CONTROL_POTENTIALS = ("goal-distance",)
-METAWORLD = tuple(
+METAWORLD_V0 = tuple(
     f"planshape/MetaWorld-{name}-v3"
     for name in (
         "reach",
@@ -58,6 +82,9 @@ METAWORLD = tuple(
         "window-open",
     )
 )
+#: the MetaWorld tasks the profiles run: reach-v4 observes the fingertip centre, so that its
+#: plan's last subgoal holds on the step of MetaWorld's success
+METAWORLD = tuple(t.replace("MetaWorld-reach-v3", "MetaWorld-reach-v4") for t in METAWORLD_V0)
 ROBOTICS = (
     "planshape/PointMaze_UMaze-v3",
     "planshape/PointMaze_Medium-v3",
@@ -138,7 +165,12 @@ class Profile:
         description: one line for ``--help`` and the leaderboard header.
         blocks: the runs.
         eval_every: evaluate the policy every this many environment steps (and at the end).
-        eval_episodes: deterministic evaluation episodes per evaluation point.
+        eval_episodes: deterministic evaluation episodes per evaluation point, on tasks that
+            draw their start from the seed (a fixed task runs one episode, a distribution its
+            held-out instances: :func:`planshape.runner.evaluation_episodes`).
+        caveats: what a reader of its leaderboard must know.
+        archived: for a profile kept only for its stored runs, why it cannot be run any more
+            and how to reproduce it (``planshape bench`` refuses it).
     """
 
     name: str
@@ -147,6 +179,13 @@ class Profile:
     eval_every: int
     eval_episodes: int
     caveats: Sequence[str] = field(default_factory=tuple)
+    archived: str = ""
+
+    @property
+    def folder(self) -> str:
+        """Where its results are stored, relative to the repository root: ``leaderboard/`` for
+        the default profile, ``leaderboard/<name>/`` for every other."""
+        return RESULTS_ROOT if self.name == "default" else f"{RESULTS_ROOT}/{self.name}"
 
     def runs(
         self,
@@ -189,10 +228,10 @@ SMOKE = Profile(
     description="reach, 3 entries, PPO, 1 seed, 4096 steps: checks the pipeline end to end",
     blocks=(
         Block(
-            tasks=("planshape/Reach-v0",),
+            tasks=("planshape/Reach-v1",),
             algos=("PPO",),
             seeds=(0,),
-            budgets={"planshape/Reach-v0": 4096},
+            budgets={"planshape/Reach-v1": 4096},
             potentials=("plan-based",),
             models=("multi",),
         ),
@@ -203,16 +242,18 @@ SMOKE = Profile(
 )
 
 # Multiples of PPO's rollout (8 environments × 128 steps), so PPO trains exactly the budget.
-_PLANAR_BUDGETS = {
-    "planshape/Reach-v0": 40 * 1024,
-    "planshape/Push-v0": 80 * 1024,
-    "planshape/MazeReach-v0": 80 * 1024,
-}
-_SAC_BUDGETS = {
-    "planshape/Reach-v0": 10_000,
-    "planshape/Push-v0": 15_000,
-    "planshape/MazeReach-v0": 15_000,
-}
+# The same per task in every version (and for a task's distribution).
+_PPO_STEPS = {"Reach": 40 * 1024, "Push": 80 * 1024, "MazeReach": 80 * 1024}
+_SAC_STEPS = {"Reach": 10_000, "Push": 15_000, "MazeReach": 15_000}
+
+
+def _per_task(steps: Mapping[str, int], tasks: Sequence[str]) -> dict[str, int]:
+    """Budgets of ``tasks`` by their name (``planshape/PushRandomized-v1`` is a push task)."""
+    return {t: steps[t.split("/")[1].split("-")[0].removesuffix("Randomized")] for t in tasks}
+
+
+_PLANAR_BUDGETS = _per_task(_PPO_STEPS, PLANAR + PLANAR_V0 + RANDOMIZED)
+_SAC_BUDGETS = _per_task(_SAC_STEPS, PLANAR + PLANAR_V0 + RANDOMIZED)
 
 
 def _shaped_only(
@@ -229,49 +270,86 @@ def _shaped_only(
     )
 
 
-DEFAULT = Profile(
-    name="default",
-    description=(
-        "reach, push, maze-reach × {sparse, dense, 3 potentials × 3 models} × PPO × 5 seeds, "
-        "plus SAC (tuned) on sparse, dense, the grid potentials, plan-path and goal-distance × "
-        "2 seeds (5 on push for sparse, dense, plan-path and goal-distance), plus the "
-        "planning-derived potentials (plan-distance, plan-path, h-star, h-star-geodesic) on "
-        "the grid models and the goal-distance control × PPO × 5 seeds"
-    ),
-    blocks=(
-        Block(PLANAR, ("PPO",), tuple(range(5)), _PLANAR_BUDGETS, models=PAPER_MODELS),
+def _default_blocks(planar: Sequence[str], push: Sequence[str]) -> tuple[Block, ...]:
+    """The default profile's blocks on one version of the planar tasks."""
+    return (
+        Block(planar, ("PPO",), tuple(range(5)), _PLANAR_BUDGETS, models=PAPER_MODELS),
         # two SAC seeds (five on push, below): SAC runs take 1–2 minutes each on a core
         Block(
-            PLANAR,
+            planar,
             ("SAC",),
             tuple(range(2)),
             _SAC_BUDGETS,
             PAPER_POTENTIALS + CONTROL_POTENTIALS,
             models=("grid",),
         ),
-        _shaped_only(PLANAR, "SAC", 2, _SAC_BUDGETS, ("plan-path",), GRID_MODELS),
+        _shaped_only(planar, "SAC", 2, _SAC_BUDGETS, ("plan-path",), GRID_MODELS),
         # push with SAC is where a potential matches dense: 5 seeds for that comparison
-        Block(PUSH, ("SAC",), tuple(range(5)), _SAC_BUDGETS, CONTROL_POTENTIALS, models=("grid",)),
-        _shaped_only(PUSH, "SAC", 5, _SAC_BUDGETS, ("plan-path",), GRID_MODELS),
-        _shaped_only(PLANAR, "PPO", 5, _PLANAR_BUDGETS, PLANNING_POTENTIALS, GRID_MODELS),
-        _shaped_only(PLANAR, "PPO", 5, _PLANAR_BUDGETS, CONTROL_POTENTIALS, ("grid",)),
-    ),
+        Block(push, ("SAC",), tuple(range(5)), _SAC_BUDGETS, CONTROL_POTENTIALS, models=("grid",)),
+        _shaped_only(push, "SAC", 5, _SAC_BUDGETS, ("plan-path",), GRID_MODELS),
+        _shaped_only(planar, "PPO", 5, _PLANAR_BUDGETS, PLANNING_POTENTIALS, GRID_MODELS),
+        _shaped_only(planar, "PPO", 5, _PLANAR_BUDGETS, CONTROL_POTENTIALS, ("grid",)),
+    )
+
+
+_DEFAULT_DESCRIPTION = (
+    "reach, push, maze-reach × {sparse, dense, 3 potentials × 3 models} × PPO × 5 seeds, "
+    "plus SAC (tuned) on sparse, dense, the grid potentials, plan-path and goal-distance × "
+    "2 seeds (5 on push for sparse, dense, plan-path and goal-distance), plus the "
+    "planning-derived potentials (plan-distance, plan-path, h-star, h-star-geodesic) on "
+    "the grid models and the goal-distance control × PPO × 5 seeds"
+)
+_SHARED_CAVEATS = (
+    "SAC runs get smaller budgets than PPO (SAC takes one gradient step per environment "
+    "step; on 2 CPU cores these budgets keep the profile near an hour and a half)",
+    "every potential's φ is multiplied by shaping_scale = 1/(1 − γ) = 100 (planshape."
+    "hyperparams); the source paper tuned a multiplier per potential by hand, this "
+    "benchmark applies one rule to every entry",
+    "PPO and SAC see the observation rescaled from its bounds to [-1, 1] "
+    "(rescale_observations, planshape.hyperparams); on raw metres no entry solved "
+    "maze-reach",
+)
+
+DEFAULT = Profile(
+    name="default",
+    description=_DEFAULT_DESCRIPTION + ", on the source paper's tasks (v1)",
+    blocks=_default_blocks(PLANAR, PUSH),
     eval_every=10_000,
     eval_episodes=10,
     caveats=(
-        "SAC runs get smaller budgets than PPO (SAC takes one gradient step per environment "
-        "step; on 2 CPU cores these budgets keep the profile near an hour and a half)",
-        "every potential's φ is multiplied by shaping_scale = 1/(1 − γ) = 100 (planshape."
-        "hyperparams); the source paper tuned a multiplier per potential by hand, this "
-        "benchmark applies one rule to every entry",
+        *_SHARED_CAVEATS,
+        "the tasks are the source paper's (v1): reach behind its wall, push with its cylinder, "
+        "its subgoal-based dense rewards; episodes are 50 (reach, maze-reach) and 40 (push) "
+        "steps, not the paper's 25, in which the goals cannot be reached at 0.02 m per step",
+        "each task starts every episode in one state and is deterministic, so every "
+        "evaluation point is one episode and a run's success is 0 or 1",
+        "goal-distance is a control, not a planning-derived potential: the straight-line "
+        "distance to the goal (v0's dense reward) used as a potential",
+    ),
+)
+
+DEFAULT_V0 = Profile(
+    name="default-v0",
+    description=_DEFAULT_DESCRIPTION
+    + ", on the v0 tasks (reach without its wall, push with a box)",
+    blocks=_default_blocks(PLANAR_V0, ("planshape/Push-v0",)),
+    eval_every=10_000,
+    eval_episodes=10,
+    caveats=(
+        *_SHARED_CAVEATS,
         "episodes are 40 (reach, push) and 50 (maze-reach) steps, not the paper's 25: the "
         "goals cannot be reached in 25 steps of 0.02 m",
-        "PPO and SAC see the observation rescaled from its bounds to [-1, 1] "
-        "(rescale_observations, planshape.hyperparams); on raw metres no entry solved "
-        "maze-reach",
         "goal-distance is a control, not a planning-derived potential: the dense reward's own "
         "distance used as a potential; where it also trails dense, the gap is what keeping "
         "the optimal policy costs, not what the plan lacks",
+        "v0 tasks differ from the source paper's: reach has no wall, push's object is a square "
+        "box; evaluation protocol 1 ran 10 copies of the one deterministic episode and "
+        "recorded PPO's points before the rollout's update",
+    ),
+    archived=(
+        "archived: the default profile of the v0 tasks, evaluated with protocol 1; kept for "
+        "its stored runs (leaderboard/default-v0). Reproduce it: git checkout 802aaba, "
+        "then tox -e bench"
     ),
 )
 
@@ -345,7 +423,81 @@ METAWORLD_PROFILE = Profile(
     ),
 )
 
-PROFILES: dict[str, Profile] = {p.name: p for p in (SMOKE, DEFAULT, PAPER, FULL, METAWORLD_PROFILE)}
+METAWORLD_V0_PROFILE = Profile(
+    name="metaworld-v0",
+    description=(
+        "the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} on the stages model "
+        "× PPO × 2 seeds, 102,400 steps each"
+    ),
+    blocks=(
+        Block(
+            METAWORLD_V0,
+            ("PPO",),
+            (0, 1),
+            {t: _METAWORLD_BUDGET for t in METAWORLD_V0},
+            potentials=("plan-based", "plan-distance"),
+        ),
+    ),
+    eval_every=4 * 8 * 512,
+    eval_episodes=10,
+    caveats=(
+        "a reduction of the full profile's MetaWorld block (500k steps × 5 seeds × PPO and SAC "
+        "× 5 entries) to what 2 CPU cores train in about 80 minutes (2.64 h of runs): PPO "
+        "trains MetaWorld at about 1,300 steps/s on one core and SAC ([256, 256], one gradient "
+        "step per step) at about 50, so the full block would take days; 102k steps are 25 PPO "
+        "updates, far below the millions MetaWorld tasks usually need",
+        "observations are MetaWorld's raw ones (no finite bounds to rescale from)",
+        "reach-v3's hand-at lags MetaWorld's success by 2-5 steps (reach-v4 fixes it); "
+        "evaluation protocol 1 recorded PPO's points before the rollout's update",
+    ),
+    archived=(
+        "archived: the metaworld profile with reach-v3, evaluated with protocol 1; kept for "
+        "its stored runs (leaderboard/metaworld-v0). Reproduce with git checkout 802aaba, then "
+        "tox -e bench -- --profile metaworld --out leaderboard/metaworld"
+    ),
+)
+
+
+INSTANCES = Profile(
+    name="instances",
+    description=(
+        "the task-instance distributions of reach, push and maze-reach × {sparse, dense, "
+        "plan-based, plan-distance and plan-path on the grid models, goal-distance} × PPO × 5 "
+        "seeds, trained on 100 instances and evaluated on 50 held-out ones"
+    ),
+    blocks=(
+        Block(
+            RANDOMIZED,
+            ("PPO",),
+            tuple(range(5)),
+            _PLANAR_BUDGETS,
+            ("plan-based", "plan-distance", "plan-path", *CONTROL_POTENTIALS),
+            models=("grid",),
+        ),
+    ),
+    eval_every=10_000,
+    eval_episodes=10,
+    caveats=(
+        "every evaluation point runs the 50 held-out instances: success is the fraction of "
+        "unseen instances solved",
+        "budgets are those of the fixed tasks, not yet chosen from learning curves",
+        *_SHARED_CAVEATS[1:],
+    ),
+)
+
+PROFILES: dict[str, Profile] = {
+    p.name: p
+    for p in (
+        SMOKE,
+        DEFAULT,
+        PAPER,
+        FULL,
+        METAWORLD_PROFILE,
+        INSTANCES,
+        DEFAULT_V0,
+        METAWORLD_V0_PROFILE,
+    )
+}
 
 
 def get_profile(name: str) -> Profile:

@@ -1,10 +1,23 @@
 """One benchmark run: train a stable-baselines3 learner on one reward entry of one task for a
 fixed budget, evaluating it on the task's own metrics along the way.
 
-Evaluation never looks at the training reward: every evaluation point runs ``eval_episodes``
-episodes of the deterministic policy on the task with its own sparse reward and records the
-success rate (the task's success flag at the episode's end), the final distance to the goal
-(the source paper's metric) and the return under the sparse reward (correctness rule 5).
+Evaluation never looks at the training reward: every evaluation point runs episodes of the
+deterministic policy on the task with its own sparse reward and records the success rate (the
+task's success flag at the episode's end), the final distance to the goal (the source paper's
+metric) and the return under the sparse reward (correctness rule 5). Which episodes
+(:func:`evaluation_episodes`, evaluation protocol 2):
+
+* a fixed task (``TaskSpec.fixed``: one start, deterministic) runs one episode: more would be
+  copies of it, so its success rate is 0 or 1 per run;
+* a task-instance distribution runs every instance of its held-out evaluation set, so its
+  success rate is the fraction of unseen instances solved;
+* any other task (MetaWorld, gymnasium-robotics: start and goal drawn from the seed) runs the
+  profile's ``eval_episodes`` seeded episodes.
+
+Each point is recorded with the number of steps the evaluated policy was trained on: it is
+taken at the start of a rollout, after the update on the steps before it (protocol 1, the
+runs stored before it, evaluated PPO inside a rollout, before that rollout's update, and ran
+``eval_episodes`` copies of a fixed task's one episode).
 
 A run is a pure function of its :class:`RunSpec` (rule 6): the learner, the environments and the
 evaluation episodes are seeded from it, torch uses one thread, and nothing else is random.
@@ -40,9 +53,47 @@ import numpy as np
 from planshape.errors import BadInputError
 from planshape.hyperparams import hyperparameters
 from planshape.profiles import RunKey
+from planshape.registration import instance_set, task_spec
 
 PACKAGES = ("planshape", "stable-baselines3", "torch", "gymnasium", "mujoco", "numpy")
 EVAL_SEED_OFFSET = 10_000
+#: the evaluation protocol of new runs (see the module docstring); stored rows without the
+#: field were made with protocol 1
+EVAL_PROTOCOL = 2
+
+
+def evaluation_episodes(task: str, eval_episodes: int) -> list[dict[str, Any]]:
+    """The ``reset`` arguments of the episodes one evaluation point runs on ``task`` (protocol
+    2): one episode of a fixed task, every held-out instance of a distribution, else
+    ``eval_episodes`` seeded episodes.
+
+    Example:
+        >>> import planshape
+        >>> evaluation_episodes("planshape/Reach-v1", 10)
+        [{'seed': 10000}]
+        >>> len(evaluation_episodes("planshape/ReachRandomized-v1", 10))
+        50
+    """
+    spec = task_spec(task)
+    if spec.fixed:
+        return [{"seed": EVAL_SEED_OFFSET}]
+    instances = instance_set(spec)
+    if instances is not None:
+        return [
+            {"seed": EVAL_SEED_OFFSET, "options": {"instance": k}}
+            for k in range(len(instances.eval))
+        ]
+    return [{"seed": EVAL_SEED_OFFSET + e} for e in range(eval_episodes)]
+
+
+def evaluation_text(task: str, episodes: int) -> str:
+    """What one evaluation point of ``task`` measures, for the leaderboard."""
+    spec = task_spec(task)
+    if spec.fixed:
+        return "1 episode (a fixed, deterministic task: success is 0 or 1 per run)"
+    if spec.instances:
+        return f"the {episodes} held-out instances (success: the fraction solved)"
+    return f"{episodes} seeded episodes"
 
 
 @dataclass(frozen=True)
@@ -55,6 +106,7 @@ class RunSpec:
     eval_episodes: int
     hyperparameters: dict[str, Any] = field(hash=False)
     invariance: str = "not-checked"
+    eval_protocol: int = EVAL_PROTOCOL
 
     @classmethod
     def create(
@@ -64,21 +116,33 @@ class RunSpec:
         eval_every: int,
         eval_episodes: int,
         invariance: str = "not-checked",
+        eval_protocol: int = EVAL_PROTOCOL,
     ) -> RunSpec:
-        return cls(
-            key, profile, eval_every, eval_episodes, hyperparameters(key.task, key.algo), invariance
-        )
+        """The spec of ``key`` with its task's and algorithm's hyperparameters (``eval_protocol``
+        1 only to find runs stored with it: this code evaluates with protocol 2)."""
+        settings = hyperparameters(key.task, key.algo)
+        return cls(key, profile, eval_every, eval_episodes, settings, invariance, eval_protocol)
+
+    @property
+    def episodes(self) -> list[dict[str, Any]]:
+        """The ``reset`` arguments of one evaluation point's episodes."""
+        return evaluation_episodes(self.key.task, self.eval_episodes)
 
     @property
     def run_id(self) -> str:
         """A content hash of what determines the numbers (not of the profile's name or the code
-        version, which are recorded as provenance), so stored runs are found again."""
-        identity = {
+        version, which are recorded as provenance), so stored runs are found again. From
+        protocol 2 on it hashes the episodes evaluated, not the profile's ``eval_episodes``
+        (which a fixed task or a distribution does not use), and the protocol."""
+        identity: dict[str, Any] = {
             **asdict(self.key),
             "eval_every": self.eval_every,
             "eval_episodes": self.eval_episodes,
             "hyperparameters": self.hyperparameters,
         }
+        if self.eval_protocol != 1:
+            identity["eval_episodes"] = self.episodes
+            identity["eval_protocol"] = self.eval_protocol
         text = json.dumps(identity, sort_keys=True)
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
@@ -179,8 +243,10 @@ def make_training_env(
 
 
 def make_evaluation_env(key: RunKey, hyperparameters: dict[str, Any]) -> gymnasium.Env:
-    """The task with its own sparse reward, seen by the learner as in training."""
-    env = gymnasium.make(key.task)
+    """The task with its own sparse reward, seen by the learner as in training; a
+    distribution's held-out instances."""
+    held_out = {"instances": "eval"} if task_spec(key.task).instances else {}
+    env = gymnasium.make(key.task, **held_out)
     return learner_view(env) if hyperparameters.get("rescale_observations") else env
 
 
@@ -211,12 +277,18 @@ def learner_view(env: gymnasium.Env) -> gymnasium.Env:
     return gymnasium.wrappers.RescaleObservation(env, -bound, bound)
 
 
-def evaluate(model: Any, env: gymnasium.Env, episodes: int, seed: int) -> dict[str, float]:
+def evaluate(
+    model: Any, env: gymnasium.Env, episodes: int | list[dict[str, Any]], seed: int = 0
+) -> dict[str, float]:
     """The deterministic policy on the task's own sparse reward: success rate at the end of
-    the episode, mean final distance, mean undiscounted sparse return."""
+    the episode, mean final distance, mean undiscounted sparse return. ``episodes`` is a list
+    of ``reset`` arguments (:func:`evaluation_episodes`), or a count of episodes seeded from
+    ``seed`` on."""
+    if isinstance(episodes, int):
+        episodes = [{"seed": seed + e} for e in range(episodes)]
     successes, distances, returns = [], [], []
-    for episode in range(episodes):
-        obs, info = env.reset(seed=seed + episode)
+    for reset in episodes:
+        obs, info = env.reset(**reset)
         total, done = 0.0, False
         while not done:
             action, _ = model.predict(obs, deterministic=True)
@@ -252,27 +324,28 @@ def execute(spec: RunSpec) -> list[dict[str, Any]]:
 
     points: list[tuple[int, dict[str, float]]] = []
     eval_seconds = [0.0]
+    episodes = spec.episodes
 
     def record() -> None:
         t0 = time.perf_counter()
-        points.append(
-            (
-                int(model.num_timesteps),
-                evaluate(model, eval_env, spec.eval_episodes, EVAL_SEED_OFFSET),
-            )
-        )
+        points.append((int(model.num_timesteps), evaluate(model, eval_env, episodes)))
         eval_seconds[0] += time.perf_counter() - t0
 
     class Evaluation(BaseCallback):
+        """Evaluates at the start of a rollout, when the policy has been updated on every
+        step collected so far (PPO and SAC alike), once ``eval_every`` more steps are in."""
+
         def __init__(self) -> None:
             super().__init__()
             self.next_at = spec.eval_every
 
-        def _on_step(self) -> bool:
+        def _on_rollout_start(self) -> None:
             if self.num_timesteps >= self.next_at and self.num_timesteps < key.budget:
                 record()
                 while self.next_at <= self.num_timesteps:
                     self.next_at += spec.eval_every
+
+        def _on_step(self) -> bool:
             return True
 
     record()  # the untrained policy, at step 0
@@ -292,7 +365,9 @@ def execute(spec: RunSpec) -> list[dict[str, Any]]:
         "seed": key.seed,
         "budget": key.budget,
         "profile": spec.profile,
-        "eval_episodes": spec.eval_episodes,
+        "eval_episodes": len(episodes),
+        "eval_protocol": spec.eval_protocol,
+        "evaluation": evaluation_text(key.task, len(episodes)),
         "invariance": spec.invariance,
         "wall_time_s": round(wall, 3),
         "steps_per_s": round(model.num_timesteps / train_seconds, 1),

@@ -628,6 +628,22 @@ def _interval_columns(prefix: str, interval: Interval, *samples: Any) -> dict[st
     return {prefix: interval.value, f"{prefix}_low": interval.low, f"{prefix}_high": interval.high}
 
 
+def eval_protocol(row: Mapping[str, Any]) -> int:
+    """The evaluation protocol of a row (see :mod:`planshape.runner`); rows stored before the
+    field existed were made with protocol 1."""
+    return int(row.get("eval_protocol", 1))
+
+
+def evaluation_text(row: Mapping[str, Any]) -> str:
+    """What a row's evaluation point measured."""
+    if "evaluation" in row:
+        return str(row["evaluation"])
+    return (
+        f"{row['eval_episodes']} deterministic episodes (protocol 1: recorded at the callback's "
+        "step, for PPO before that rollout's update)"
+    )
+
+
 def _groups(runs: list[_Run]) -> dict[tuple[str, str, str], list[_Run]]:
     """(task, algo, entry) -> runs, checking one budget per group and one run per seed."""
     groups: dict[tuple[str, str, str], list[_Run]] = defaultdict(list)
@@ -640,6 +656,13 @@ def _groups(runs: list[_Run]) -> dict[tuple[str, str, str], list[_Run]]:
             raise ResultsError(
                 f"{task} / {entry} / {algo} mixes budgets {budgets}; results of different "
                 "profiles cannot share a leaderboard — render them from separate --out folders"
+            )
+        protocols = sorted({eval_protocol(r.final) for r in group})
+        if len(protocols) > 1:
+            raise ResultsError(
+                f"{task} / {entry} / {algo} mixes evaluation protocols {protocols}; runs "
+                "evaluated differently cannot share a cell — render them from separate --out "
+                "folders"
             )
         by_seed: dict[int, list[str]] = defaultdict(list)
         for r in group:
@@ -877,6 +900,10 @@ def describe_runs(rows: Iterable[Row], profile: str | None = None) -> dict[str, 
         "seeds": sorted({f["seed"] for f in finals}),
         "seeds_per_entry": [min(seed_counts), max(seed_counts)] if seed_counts else [],
         "eval_episodes": sorted({f["eval_episodes"] for f in finals}),
+        "evaluations": {
+            t: sorted({evaluation_text(f) for f in finals if f["task"] == t})
+            for t in sorted({f["task"] for f in finals})
+        },
         "code_versions": sorted({f["code_version"] for f in finals}),
         "packages": {name: sorted(v) for name, v in sorted(packages.items())},
         "gammas": sorted({f["gamma"] for f in finals}),

@@ -133,7 +133,7 @@ register_task(
         },
         default_model="grid",
         max_episode_steps=40,
-        description="move the end effector to a goal in the plane and stay there",
+        description="v0, without the paper's wall: move the end effector to a goal and stay there",
         fixed=True,
     )
 )
@@ -149,7 +149,7 @@ register_task(
         },
         default_model="grid",
         max_episode_steps=40,
-        description="push a box to a goal with the end effector",
+        description="v0, with a square box for the paper's cylinder: push it to a goal",
         fixed=True,
     )
 )
@@ -164,7 +164,7 @@ register_task(
         },
         default_model="grid",
         max_episode_steps=50,
-        description="reach a goal inside three walls, entering from above",
+        description="v0, with the straight-distance dense reward: reach a goal inside three walls",
         fixed=True,
     )
 )
