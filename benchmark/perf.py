@@ -1,6 +1,8 @@
 """The performance figures of the engine and the tasks, in one run (``python -m planshape.perf``).
 
 * planner: cold plan time and cache-hit time on generated 10x10 and 30x30 grids;
+* instances: the planning cost of the task-instance distributions, cold and cached, per
+  instance;
 * shaping: time per step shaped over unshaped, same environment and actions;
 * environments: steps per second of reach, push and maze-reach next to PointMaze;
 * invariance: value iteration on an augmented MDP of about 10^6 state-action pairs;
@@ -14,10 +16,18 @@ from __future__ import annotations
 
 import sys
 
-from planshape import perf_envs, perf_invariance, perf_planner, perf_shaping, perf_training
+from planshape import (
+    perf_envs,
+    perf_instances,
+    perf_invariance,
+    perf_planner,
+    perf_shaping,
+    perf_training,
+)
 
 SECTIONS = [
     ("planner", perf_planner),
+    ("instances", perf_instances),
     ("shaping", perf_shaping),
     ("environments", perf_envs),
     ("invariance", perf_invariance),

@@ -111,11 +111,13 @@ def _action_std(model: Any) -> float | None:
 
 
 def _plan_length(model: Any) -> int | None:
+    """The plan's length, or None without shaping or when it changes between instances."""
     try:
+        shaping = model.get_env().env_method("get_wrapper_attr", "per_instance", indices=[0])[0]
         progress = model.get_env().env_method("get_wrapper_attr", "progress", indices=[0])[0]
     except AttributeError:
         return None
-    return int(progress.final)
+    return None if shaping else int(progress.final)
 
 
 def _cell(value: Any, width: int, digits: int = 3) -> str:

@@ -396,57 +396,45 @@ FULL = Profile(
 #: PPO's rollout on MetaWorld is 8 environments × 512 steps; 25 rollouts
 _METAWORLD_BUDGET = 25 * 8 * 512
 
-METAWORLD_PROFILE = Profile(
-    name="metaworld",
-    description=(
-        "the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} on the stages model "
-        "× PPO × 2 seeds, 102,400 steps each"
-    ),
-    blocks=(
-        Block(
-            METAWORLD,
-            ("PPO",),
-            (0, 1),
-            {t: _METAWORLD_BUDGET for t in METAWORLD},
-            potentials=("plan-based", "plan-distance"),
-        ),
-    ),
-    eval_every=4 * 8 * 512,
-    eval_episodes=10,
-    caveats=(
-        "a reduction of the full profile's MetaWorld block (500k steps × 5 seeds × PPO and SAC "
-        "× 5 entries) to what 2 CPU cores train in about 80 minutes (2.64 h of runs): PPO "
-        "trains MetaWorld at about 1,300 steps/s on one core and SAC ([256, 256], one gradient "
-        "step per step) at about 50, so the full block would take days; 102k steps are 25 PPO "
-        "updates, far below the millions MetaWorld tasks usually need",
-        "observations are MetaWorld's raw ones (no finite bounds to rescale from)",
-    ),
+_METAWORLD_CAVEATS = (
+    "a reduction of the full profile's MetaWorld block (500k steps × 5 seeds × PPO and SAC "
+    "× 5 entries) to what 2 CPU cores train in about 80 minutes (2.64 h of runs): PPO "
+    "trains MetaWorld at about 1,300 steps/s on one core and SAC ([256, 256], one gradient "
+    "step per step) at about 50, so the full block would take days; 102k steps are 25 PPO "
+    "updates, far below the millions MetaWorld tasks usually need",
+    "observations are MetaWorld's raw ones (no finite bounds to rescale from)",
 )
 
-METAWORLD_V0_PROFILE = Profile(
-    name="metaworld-v0",
-    description=(
-        "the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} on the stages model "
-        "× PPO × 2 seeds, 102,400 steps each"
-    ),
-    blocks=(
-        Block(
-            METAWORLD_V0,
-            ("PPO",),
-            (0, 1),
-            {t: _METAWORLD_BUDGET for t in METAWORLD_V0},
-            potentials=("plan-based", "plan-distance"),
+
+def _metaworld(name: str, tasks: Sequence[str], caveats: Sequence[str] = (), archived: str = ""):
+    """The metaworld profile on ``tasks``."""
+    return Profile(
+        name=name,
+        description=(
+            "the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} on the stages "
+            "model × PPO × 2 seeds, 102,400 steps each"
         ),
-    ),
-    eval_every=4 * 8 * 512,
-    eval_episodes=10,
+        blocks=(
+            Block(
+                tasks,
+                ("PPO",),
+                (0, 1),
+                {t: _METAWORLD_BUDGET for t in tasks},
+                potentials=("plan-based", "plan-distance"),
+            ),
+        ),
+        eval_every=4 * 8 * 512,
+        eval_episodes=10,
+        caveats=(*_METAWORLD_CAVEATS, *caveats),
+        archived=archived,
+    )
+
+
+METAWORLD_PROFILE = _metaworld("metaworld", METAWORLD)
+METAWORLD_V0_PROFILE = _metaworld(
+    "metaworld-v0",
+    METAWORLD_V0,
     caveats=(
-        "a reduction of the full profile's MetaWorld block (500k steps × 5 seeds × PPO and SAC "
-        "× 5 entries) to what 2 CPU cores train in about 80 minutes (2.64 h of runs): PPO "
-        "trains MetaWorld at about 1,300 steps/s on one core and SAC ([256, 256], one gradient "
-        "step per step) at about 50, so the full block would take days; 102k steps are 25 PPO "
-        "updates, far below the millions MetaWorld tasks usually need",
-        "observations are MetaWorld's raw ones (no finite bounds to rescale from)",
         "reach-v3's hand-at lags MetaWorld's success by 2-5 steps (reach-v4 fixes it); "
         "evaluation protocol 1 recorded PPO's points before the rollout's update",
     ),
@@ -456,7 +444,6 @@ METAWORLD_V0_PROFILE = Profile(
         "tox -e bench -- --profile metaworld --out leaderboard/metaworld"
     ),
 )
-
 
 INSTANCES = Profile(
     name="instances",

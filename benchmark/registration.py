@@ -295,10 +295,13 @@ def shape_instances(
     def plans(instance: Any) -> tuple[PlanProgress, Geometry | None]:
         return instance_plan(task, model, instance, search, match)
 
+    # until the first reset, the plan of the first training instance
+    progress, geometry = plans(instance_set(task_spec(task)).train[0])
     return PotentialShaping(
         env,
         make_potential(potential, **dict(potential_kwargs or {})).rescaled(potential_scale),
-        None,
+        progress,
         gamma=gamma,
+        geometry=geometry,
         plans=plans,
     )

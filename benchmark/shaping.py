@@ -55,7 +55,8 @@ class PotentialShaping(gymnasium.Wrapper):
         plans: for a task-instance distribution, instance -> (progress, geometry): on every
             ``reset`` the wrapper reads the episode's instance from ``info["instance"]`` and
             shapes the episode with that instance's plan (``progress`` and ``geometry`` are then
-            those of the current episode). The plan changes only on ``reset``.
+            those of the current episode; before the first reset, those given). The plan
+            changes only on ``reset``.
 
     ``info`` gains, on every step: ``reward_original`` (the reward before shaping),
     ``shaping`` (F), ``potential`` (φ of the new state as used in F), ``progress`` (max_idx);
@@ -129,6 +130,11 @@ class PotentialShaping(gymnasium.Wrapper):
         info["potential"] = phi
         info["progress"] = self._max_idx
         return obs, float(reward) + shaping, terminated, truncated, info
+
+    @property
+    def per_instance(self) -> bool:
+        """Whether each episode is shaped with its own instance's plan."""
+        return self._plans is not None
 
     @property
     def max_idx(self) -> int:

@@ -10,6 +10,7 @@ so nothing is built (or planned) until a toy is made:
 ``reach``              planar reach on the real grid model, continuing: "reach and stay", γ=0.95
 ``reach-episodic``     the same, but entering the goal terminates the episode
 ``maze-reach``         planar maze-reach on the real grid model, walls, 10 % slip, continuing
+``reach-instance``     one held-out instance of reach's distribution (v1: wall, drawn goal)
 ``push``               planar push (end effector and box cells) on a coarse grid, episodic
 ``random-episodic``    a random MDP over random points, a 4-region chain plan, terminal goal
 ``random-continuing``  the same without termination
@@ -257,6 +258,11 @@ register_toy(
     "maze-reach",
     "planshape.invariance.planar:maze_reach",
     "planar maze-reach, real grid model with walls, 10% slip, continuing, γ=0.95",
+)
+register_toy(
+    "reach-instance",
+    "planshape.invariance.planar:reach_instance",
+    "planar reach-v1, one held-out instance of the distribution: wall, drawn goal, continuing",
 )
 register_toy(
     "push",

@@ -134,6 +134,7 @@ def test_list(capsys):
         "reach",
         "reach-episodic",
         "maze-reach",
+        "reach-instance",
         "push",
         "random-episodic",
         "random-continuing",
