@@ -108,6 +108,8 @@ TABLE: dict[tuple[str, str], dict[str, Any]] = {
     **{(f, "PPO"): PPO_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
     **{(f, "SAC"): SAC_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
 }
+#: the algorithms that have a table of their own; every learner id maps to one of them
+#: (``SBX-SAC`` shares ``SAC``'s: :mod:`planshape.learners`)
 ALGORITHMS = ("PPO", "SAC", "SAC-default")
 
 
@@ -118,10 +120,12 @@ def family(task_id: str) -> str:
 
 
 def hyperparameters(task_id: str, algo: str) -> dict[str, Any]:
-    """A fresh copy of the settings of ``algo`` on ``task_id``."""
-    if algo not in ALGORITHMS:
-        raise UnknownIdError("algorithm", algo, ALGORITHMS)
-    key = (family(task_id), algo)
+    """A fresh copy of the settings of ``algo`` (a learner id, e.g. ``SBX-SAC``, whose table is
+    ``SAC``'s) on ``task_id``."""
+    from planshape.learners import learner
+
+    table = learner(algo).table
+    key = (family(task_id), table)
     if key not in TABLE:
         known = sorted({f for f, a in TABLE if a == algo})
         raise UnknownIdError(

@@ -1,31 +1,44 @@
-"""Training throughput with shaping over without: environment steps per second of the same
-learner on the same task, the sparse entry against shaped entries, interleaved in one process.
+"""Training throughput: environment steps per second of every learner backend on the same
+task and entries, measured side by side (interleaved) in one process, so that each ratio is
+read from one run.
 
-Goal: ≥ 0.90 (shaping costs at most a tenth of the training throughput).
-Run ``python -m planshape.perf_training``.
+For each (task, algorithm, entry) the learner first trains a warm-up (so JAX has compiled and
+the replay buffer is past its random steps), then is timed on ``--steps`` more; the median of
+``--repeats`` interleaved timings is reported with two ratios: shaped over sparse (the cost of
+shaping; goal ≥ 0.95) and this backend over stable-baselines3's same algorithm (the gain of
+SBX). Run ``python -m planshape.perf_training [--json]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import statistics
 import time
+from collections.abc import Sequence
+from typing import Any
 
 import planshape  # noqa: F401  (registers the tasks)
 from planshape.hyperparams import hyperparameters
+from planshape.learners import learner
 from planshape.profiles import RunKey
 from planshape.runner import make_learner
 
-GOAL = 0.90
-CASES = [
-    ("planshape/Reach-v0", "PPO", ("plan-based/grid", "distance-varying/grid", "h-star/grid")),
-    ("planshape/Push-v0", "PPO", ("plan-based/grid", "plan-distance/grid")),
-    ("planshape/Reach-v0", "SAC", ("plan-based/grid",)),
-]
+GOAL = 0.95
+ENTRIES = ("sparse", "plan-based/grid", "plan-distance/grid", "plan-path/grid")
+#: (task, algorithms side by side, entries)
+CASES: tuple[tuple[str, tuple[str, ...], tuple[str, ...]], ...] = (
+    ("planshape/Push-v1", ("PPO", "SBX-PPO"), ENTRIES),
+    ("planshape/Push-v1", ("SAC", "SBX-SAC", "SBX-TQC", "SBX-CrossQ"), ENTRIES),
+    ("planshape/Reach-v1", ("SAC", "SBX-SAC"), ("sparse", "plan-path/grid")),
+)
+#: the stable-baselines3 algorithm each learner is compared with
+_REFERENCE = {"PPO": "PPO", "SAC": "SAC", "TQC": "SAC", "CrossQ": "SAC"}
 
 
-def steps_per_second(task: str, entry: str, algo: str, steps: int) -> float:
-    """Train ``algo`` on one entry for ``steps`` steps (no evaluation) and time it."""
+def steps_per_second(task: str, entry: str, algo: str, steps: int, warmup: int = 0) -> float:
+    """Train ``algo`` on one entry for ``warmup`` steps, then time ``steps`` more (no
+    evaluation)."""
     import torch
 
     torch.set_num_threads(1)
@@ -33,33 +46,69 @@ def steps_per_second(task: str, entry: str, algo: str, steps: int) -> float:
     if "learning_starts" in settings:  # time gradient steps, not the random warm-up
         settings["learning_starts"] = 0
     model = make_learner(RunKey(task, entry, algo, 0, steps), settings)
+    if warmup:
+        model.learn(warmup)
     start = time.perf_counter()
-    model.learn(steps)
+    model.learn(steps, reset_num_timesteps=not warmup)
     return steps / (time.perf_counter() - start)
+
+
+def measure(steps: int, repeats: int, cases=CASES) -> list[dict[str, Any]]:
+    """One row per (task, algorithm, backend, entry)."""
+    rows = []
+    for task, algos, entries in cases:
+        timings: dict[tuple[str, str], list[float]] = {(a, e): [] for a in algos for e in entries}
+        for _ in range(repeats):
+            for algo, entry in timings:
+                n = steps if "PPO" in algo else max(steps // 16, 64)
+                timings[algo, entry].append(steps_per_second(task, entry, algo, n, warmup=n // 4))
+        rate = {k: statistics.median(v) for k, v in timings.items()}
+        for algo, entry in timings:
+            reference = _REFERENCE[learner(algo).cls]
+            rows.append(
+                {
+                    "task": task,
+                    "algo": algo,
+                    "backend": learner(algo).backend,
+                    "entry": entry,
+                    "steps_per_s": rate[algo, entry],
+                    "shaped_over_sparse": rate[algo, entry] / rate[algo, "sparse"],
+                    "over_sb3": (
+                        rate[algo, entry] / rate[reference, entry]
+                        if (reference, entry) in rate
+                        else None
+                    ),
+                }
+            )
+    return rows
+
+
+def render(rows: Sequence[dict[str, Any]]) -> str:
+    header = (
+        f"{'task':12s} {'algo':11s} {'backend':17s} {'entry':20s} {'steps/s':>8s} "
+        f"{'shaped/sparse':>13s} {'/ sb3':>6s}"
+    )
+    lines = [f"training throughput (goal shaped/sparse ≥ {GOAL})", header, "-" * len(header)]
+    for r in rows:
+        ratio = "" if r["entry"] == "sparse" else f"{r['shaped_over_sparse']:.2f}"
+        if ratio:
+            ratio += " ok" if r["shaped_over_sparse"] >= GOAL else " LOW"
+        over = "" if r["over_sb3"] is None else f"{r['over_sb3']:.2f}"
+        lines.append(
+            f"{r['task'].split('/')[1]:12s} {r['algo']:11s} {r['backend']:17s} {r['entry']:20s} "
+            f"{r['steps_per_s']:8.0f} {ratio:>13s} {over:>6s}"
+        )
+    return "\n".join(lines)
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--steps", type=int, default=8192, help="PPO steps per timing")
+    parser.add_argument("--steps", type=int, default=8192, help="PPO steps per timing (SAC: /16)")
     parser.add_argument("--repeats", type=int, default=3, help="interleaved repeats")
+    parser.add_argument("--json", action="store_true", help="print the rows as JSON")
     args = parser.parse_args(argv)
-    print("training throughput, shaped over sparse (median of interleaved repeats)")
-    print(f"{'task':20s} {'algo':4s} {'entry':22s} {'steps/s':>8s} {'sparse':>8s} ratio")
-    for task, algo, entries in CASES:
-        steps = args.steps if algo == "PPO" else args.steps // 8
-        timings: dict[str, list[float]] = {e: [] for e in ("sparse", *entries)}
-        for _ in range(args.repeats):
-            for entry in timings:
-                timings[entry].append(steps_per_second(task, entry, algo, steps))
-        sparse = statistics.median(timings["sparse"])
-        for entry in entries:
-            rate = statistics.median(timings[entry])
-            ratio = rate / sparse
-            verdict = "met" if ratio >= GOAL else "not met"
-            print(
-                f"{task.split('/')[1]:20s} {algo:4s} {entry:22s} {rate:8.0f} {sparse:8.0f} "
-                f"{ratio:5.2f} ({verdict})"
-            )
+    rows = measure(args.steps, args.repeats)
+    print(json.dumps(rows, indent=2) if args.json else render(rows))
     return 0
 
 

@@ -55,7 +55,17 @@ from planshape.hyperparams import hyperparameters
 from planshape.profiles import RunKey
 from planshape.registration import instance_set, task_spec
 
-PACKAGES = ("planshape", "stable-baselines3", "torch", "gymnasium", "mujoco", "numpy")
+PACKAGES = (
+    "planshape",
+    "stable-baselines3",
+    "torch",
+    "sbx-rl",
+    "jax",
+    "jaxlib",
+    "gymnasium",
+    "mujoco",
+    "numpy",
+)
 EVAL_SEED_OFFSET = 10_000
 #: the evaluation protocol of new runs (see the module docstring); stored rows without the
 #: field were made with protocol 1
@@ -196,16 +206,15 @@ def package_versions() -> dict[str, str]:
 
 
 def make_learner(key: RunKey, hyperparameters: dict[str, Any]) -> Any:
-    """The stable-baselines3 learner of ``key`` on its training VecEnv.
+    """The learner of ``key`` (stable-baselines3 or SBX, :mod:`planshape.learners`) on its
+    training VecEnv.
 
     ``n_envs``, ``shaping_scale`` and ``rescale_observations`` of ``hyperparameters`` configure
     the environments, the rest the algorithm. The settings are deep-copied first:
     stable-baselines3 writes into ``policy_kwargs``, and a run's settings are part of its
     identity.
     """
-    import stable_baselines3
-
-    from planshape.training import make_algorithm
+    from planshape.learners import make
 
     settings = copy.deepcopy(hyperparameters)
     n_envs = settings.pop("n_envs")
@@ -214,8 +223,7 @@ def make_learner(key: RunKey, hyperparameters: dict[str, Any]) -> Any:
     venv = make_training_env(
         key, n_envs, settings["gamma"], key.seed, shaping_scale, rescale_observations=rescale
     )
-    algorithm = getattr(stable_baselines3, ALGORITHM_CLASSES[key.algo])
-    return make_algorithm(algorithm, venv, seed=key.seed, device="cpu", verbose=0, **settings)
+    return make(key.algo, venv, seed=key.seed, device="cpu", verbose=0, **settings)
 
 
 def make_training_env(
@@ -303,9 +311,6 @@ def evaluate(
         "final_distance": float(np.mean(distances)),
         "sparse_return": float(np.mean(returns)),
     }
-
-
-ALGORITHM_CLASSES = {"PPO": "PPO", "SAC": "SAC", "SAC-default": "SAC"}
 
 
 def execute(spec: RunSpec) -> list[dict[str, Any]]:
