@@ -33,7 +33,7 @@ import gymnasium
 from planshape.abstraction import Abstraction, Classifier
 from planshape.errors import BadInputError, RegistrationError, UnknownIdError
 from planshape.planning import PddlTask, Plan, load_task, solve
-from planshape.potentials import Geometry, load_reference, make_potential
+from planshape.potentials import Geometry, Potential, load_reference, make_potential
 from planshape.progress import PlanProgress, SubgoalMatch
 from planshape.shaping import PotentialShaping
 
@@ -249,11 +249,16 @@ def shape(
     ``shaping_scale``, see :mod:`planshape.hyperparams`)."""
     return PotentialShaping(
         env,
-        make_potential(potential, **dict(potential_kwargs or {})).rescaled(potential_scale),
+        _scaled(potential, potential_kwargs, potential_scale),
         _progress(model, search, match),
         gamma=gamma,
         geometry=model.geometry,
     )
+
+
+def _scaled(potential: Any, kwargs: Mapping[str, Any] | None, scale: float) -> Potential:
+    """The potential ``potential`` made with ``kwargs``, φ multiplied by ``scale``."""
+    return make_potential(potential, **dict(kwargs or {})).rescaled(scale)
 
 
 def _progress(model: AbstractModel, search: str, match: SubgoalMatch) -> PlanProgress:
@@ -299,7 +304,7 @@ def shape_instances(
     progress, geometry = plans(instance_set(task_spec(task)).train[0])
     return PotentialShaping(
         env,
-        make_potential(potential, **dict(potential_kwargs or {})).rescaled(potential_scale),
+        _scaled(potential, potential_kwargs, potential_scale),
         progress,
         gamma=gamma,
         geometry=geometry,
