@@ -98,3 +98,11 @@ def test_archived_profiles_and_foreign_results_are_refused_before_training(tmp_p
     assert "holds runs of profile 'default' evaluated with protocol 1" in err
     assert "Traceback" not in err
     assert sorted(p.name for p in tmp_path.rglob("*")) == before  # nothing written
+
+
+def test_a_distribution_run_trains_on_its_instances_and_scores_the_held_out_ones():
+    key = RunKey("planshape/ReachRandomized-v1", "plan-based/grid", "PPO", 0, 1024)
+    rows = execute(RunSpec.create(key, "test", eval_every=1024, eval_episodes=3))
+    assert {r["eval_episodes"] for r in rows} == {50}
+    assert all(r["success_rate"] * 50 == round(r["success_rate"] * 50) for r in rows)
+    assert "held-out instances" in rows[0]["evaluation"]
