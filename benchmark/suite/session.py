@@ -33,13 +33,19 @@ def _short(task_id: str) -> str:
     return re.sub(r"[-_]", "", name).lower()
 
 
+def _version(task_id: str) -> int:
+    found = re.search(r"-v(\d+)$", task_id)
+    return int(found.group(1)) if found else -1
+
+
 def resolve_tasks(names: str | None) -> list[str] | None:
     """``"reach,planshape/Push-v0"`` -> task ids. A short name matches a task's name without
-    namespace, version, dashes or case (``maze-reach`` -> ``planshape/MazeReach-v0``)."""
+    namespace, version, dashes or case, and means its newest version (``maze-reach`` ->
+    ``planshape/MazeReach-v1``)."""
     if not names:
         return None
     known = task_ids()
-    by_short = {_short(t): t for t in known}
+    by_short = {_short(t): t for t in sorted(known, key=_version)}
     chosen = []
     for name in (n.strip() for n in names.split(",") if n.strip()):
         task = name if name in known else by_short.get(_short(name))

@@ -106,3 +106,14 @@ def test_a_distribution_run_trains_on_its_instances_and_scores_the_held_out_ones
     assert {r["eval_episodes"] for r in rows} == {50}
     assert all(r["success_rate"] * 50 == round(r["success_rate"] * 50) for r in rows)
     assert "held-out instances" in rows[0]["evaluation"]
+
+
+def test_a_short_task_name_means_its_newest_version():
+    from planshape.suite.session import resolve_tasks
+
+    assert resolve_tasks("reach,maze-reach,metaworld-reach") == [
+        "planshape/Reach-v1",
+        "planshape/MazeReach-v1",
+        "planshape/MetaWorld-reach-v4",
+    ]
+    assert resolve_tasks("planshape/Reach-v0") == ["planshape/Reach-v0"]
