@@ -18,6 +18,7 @@ import os
 import shlex
 import sys
 from pathlib import Path
+from typing import Any
 
 from planshape.cli import Handler, subcommand
 from planshape.errors import BadInputError
@@ -97,6 +98,11 @@ def _bench(parser: argparse.ArgumentParser) -> Handler:
     )
     parser.add_argument("-k", help="pytest -k expression to select runs, e.g. 'PPO and grid'")
     parser.add_argument("--no-render", action="store_true", help="do not render the leaderboard")
+    parser.add_argument(
+        "--dry-run",
+        action="store_true",
+        help="print the selected runs and their estimated wall time; train and write nothing",
+    )
     return run_bench
 
 
@@ -117,6 +123,8 @@ def run_bench(args: argparse.Namespace) -> int:
         raise BadInputError(f"--workers must be positive, not {args.workers}")
     if args.executor != "ray" and args.address:
         raise BadInputError("--address applies only with --executor ray")
+    if args.dry_run:
+        return _dry_run(args, profile)
     for reference in args.potential:
         _check_submission(reference)
     os.environ["PLANSHAPE_BENCH_COMMAND"] = "planshape bench " + shlex.join(sys.argv[2:])
@@ -126,6 +134,34 @@ def run_bench(args: argparse.Namespace) -> int:
     if status == pytest.ExitCode.USAGE_ERROR:
         return 2
     return 0 if status == pytest.ExitCode.OK else 1
+
+
+def _dry_run(args: argparse.Namespace, profile: Any) -> int:
+    """Print the runs the selection would train (not yet stored) and their estimated time."""
+    from planshape.estimate import estimate, render
+    from planshape.runner import RunSpec
+    from planshape.store import ResultStore
+    from planshape.suite.session import parse_seeds, resolve_tasks
+
+    store = ResultStore(args.out)
+    keys = [
+        key
+        for key in profile.runs(
+            tasks=resolve_tasks(args.tasks),
+            seeds=parse_seeds(args.seeds),
+            extra_potentials=args.potential,
+        )
+        if not store.has(
+            RunSpec.create(key, profile.name, profile.eval_every, profile.eval_episodes).run_id
+        )
+    ]
+    if args.k:
+        print(f"note: -k {args.k!r} is applied by the suite, not by --dry-run")
+    workers = args.workers or os.cpu_count() or 1
+    rows, total = estimate(keys, profile, workers)
+    print(f"profile {profile.name}, results in {args.out} (nothing trains or is written)")
+    print(render(rows, total, workers))
+    return 0
 
 
 def check_store(out: Path, profile: str) -> None:

@@ -117,3 +117,15 @@ def test_a_short_task_name_means_its_newest_version():
         "planshape/MetaWorld-reach-v4",
     ]
     assert resolve_tasks("planshape/Reach-v0") == ["planshape/Reach-v0"]
+
+
+def test_dry_run_prints_the_selection_and_its_estimate_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "results"
+    assert (
+        main(["bench", "--profile", "default", "--tasks", "reach", "--dry-run", "--out", str(out)])
+        == 0
+    )
+    printed = capsys.readouterr().out
+    assert "planshape/Reach-v1" in printed and "SBX-SAC" in printed
+    assert "94 runs; estimated wall time" in printed  # 80 PPO + 14 SBX-SAC reach runs
+    assert not out.exists()

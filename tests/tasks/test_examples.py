@@ -22,6 +22,7 @@ MODULES = [
     "planshape.learners",
     "planshape.profiles",
     "planshape.runner",
+    "planshape.estimate",
 ]
 
 
