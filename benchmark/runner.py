@@ -236,8 +236,11 @@ def make_training_env(
 ):
     """The VecEnv a learner trains on: each environment wrapped in its own shaping, inside the
     VecEnv, shaped with the learner's γ and φ multiplied by ``shaping_scale``; with
-    ``rescale_observations``, the learner sees :func:`learner_view` of each environment."""
+    ``rescale_observations``, the learner sees :func:`learner_view` of each environment. The
+    VecEnv is a :class:`~planshape.training.FreshInfoVecEnv` (no deep copy of the infos)."""
     from stable_baselines3.common.env_util import make_vec_env
+
+    from planshape.training import FreshInfoVecEnv
 
     env_kwargs: dict[str, Any] = {"reward": key.reward, "render_mode": None}
     if key.reward == "shaped":
@@ -246,7 +249,12 @@ def make_training_env(
         )
     wrapper = learner_view if rescale_observations else None
     return make_vec_env(
-        key.task, n_envs=n_envs, seed=seed, env_kwargs=env_kwargs, wrapper_class=wrapper
+        key.task,
+        n_envs=n_envs,
+        seed=seed,
+        env_kwargs=env_kwargs,
+        wrapper_class=wrapper,
+        vec_env_cls=FreshInfoVecEnv,
     )
 
 

@@ -48,3 +48,31 @@ def test_backends_are_different_cells() -> None:
     rows = make_run(algo="SAC", seed=0) + make_run(algo="SBX-SAC", seed=0)
     cells = {(r["task"], r["algo"], r["entry"]) for r in summarize(rows)}
     assert {algo for _, algo, _ in cells} == {"SAC", "SBX-SAC"}
+
+
+def test_the_training_vecenv_skips_the_info_copy_without_changing_a_number(monkeypatch) -> None:
+    """FreshInfoVecEnv drops DummyVecEnv's deep copy of the infos; a run trains to the very
+    same numbers with either."""
+    from stable_baselines3.common.vec_env import DummyVecEnv
+
+    from planshape import training
+
+    spec = RunSpec.create(RunKey(TASK, "plan-distance/grid", "PPO", 2, 2048), "t", 1024, 1)
+    fresh = execute(spec)
+    monkeypatch.setattr(training, "FreshInfoVecEnv", DummyVecEnv)
+    copied = execute(spec)
+    keep = ("step", "success_rate", "final_distance", "sparse_return")
+    assert [{k: r[k] for k in keep} for r in fresh] == [{k: r[k] for k in keep} for r in copied]
+
+
+def test_fresh_info_vecenv_reports_episode_ends_like_dummy_vecenv() -> None:
+    from stable_baselines3.common.env_util import make_vec_env
+
+    from planshape.training import FreshInfoVecEnv
+
+    venv = make_vec_env(TASK, n_envs=2, seed=0, vec_env_cls=FreshInfoVecEnv)
+    venv.reset()
+    for _ in range(50):  # Reach-v1 truncates at 50 steps
+        _, _, dones, infos = venv.step(venv.action_space.sample()[None].repeat(2, 0))
+    assert dones.all() and infos[0] is not infos[1]
+    assert all(i["TimeLimit.truncated"] and "terminal_observation" in i for i in infos)
