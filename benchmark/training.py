@@ -81,9 +81,10 @@ class FreshInfoVecEnv(DummyVecEnv):  # type: ignore[misc,valid-type]
     its info dict between steps cannot change what the learner was given. Every planshape task
     (and the wrappers around it) returns a new dict on every step, and ``DummyVecEnv`` replaces
     its entries rather than mutating them after the step, so a shallow copy of the list gives
-    the learner the same infos: the numbers of a run do not change (a test trains with both),
-    and a PPO run on a planar task loses the 13 % of its time the copy took (profiled on
-    Push-v1). Use it for environments that return a fresh info dict on every step.
+    the learner the same infos: the numbers of a run do not change (a test trains with both).
+    The copy is 13 % of a PPO run on Push-v1 under cProfile; measured side by side without the
+    profiler, PPO trains 3.4 % (sparse) and 4.1 % (shaped) faster without it. Use it for
+    environments that return a fresh info dict on every step.
     """
 
     def step_wait(self):
