@@ -94,6 +94,7 @@ class PlanProgress:
                 self._by_atom[j].append(i)
         self._always = max((i for i, need in enumerate(self._needs) if not need), default=-1)
         self._exact = {need: i for i, need in enumerate(self._needs)}
+        self._furthest_by_held: dict[tuple[frozenset[int], int], int] = {}
 
     @property
     def final(self) -> int:
@@ -141,6 +142,16 @@ class PlanProgress:
         held = self._evaluate.holding(obs)
         if self.match == "exact":
             return max(floor, self._exact.get(frozenset(held), -1))
+        if isinstance(held, frozenset):  # a remembered answer (keyed classifiers): remember ours
+            answer = self._furthest_by_held.get((held, floor))
+            if answer is None:
+                if len(self._furthest_by_held) >= 1 << 16:
+                    self._furthest_by_held.clear()
+                answer = self._furthest_by_held[held, floor] = self._search(held, floor)
+            return answer
+        return self._search(held, floor)
+
+    def _search(self, held: set[int] | frozenset[int], floor: int) -> int:
         best = max(floor, self._always)
         needs = self._needs
         for j in held:

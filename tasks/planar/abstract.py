@@ -187,6 +187,16 @@ class InPlace:
             route = self._routes[id(groundings)] = self._route(groundings)
         return route
 
+    @property
+    def key(self):
+        """The grid cell of the entity, when the only place table is a grid (what holds is a
+        function of it: :class:`planshape.abstraction.Vectorized`'s ``key``), else None."""
+        if len(self.places) != 1 or not self.places[0].grid:
+            return None
+        cell = self.places[0]._finder._cell  # type: ignore[attr-defined]
+        position = self.position
+        return lambda obs: cell(*obs[position].tolist())
+
     def holding(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> list[int]:
         """The positions in ``groundings`` that hold in one observation (see
         :class:`planshape.abstraction.Vectorized`)."""
@@ -322,7 +332,7 @@ def planar_model(
     one :class:`InPlace` classifier per entity predicate over ``places``, and the geometry
     hooks."""
     classifiers = {
-        predicate: Vectorized(in_place, holding=in_place.holding)
+        predicate: Vectorized(in_place, holding=in_place.holding, key=in_place.key)
         for predicate, arg, position in entities.values()
         for in_place in [InPlace(places, position, arg)]
     }

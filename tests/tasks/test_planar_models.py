@@ -125,3 +125,23 @@ def test_grid_cells_tile_the_plane_even_on_their_edges(factory: str) -> None:
         hits = places.contains(np.array([x, y], np.float32), every)
         assert hits.sum() == 1, (x, y)
         assert places.containing(float(x), float(y)) == np.flatnonzero(hits).tolist()
+
+
+@pytest.mark.parametrize("task", ["planshape/Push-v1", "planshape/MazeReach-v1"])
+def test_remembered_cell_answers_agree_with_the_batch_path(task: str) -> None:
+    """Grid classifiers have a key (the entity's cell); the evaluators remember each answer by
+    it. On random observations, in and beyond the grid, asked twice, the remembered answers and
+    progress equal those of the batch path."""
+    env = gymnasium.make(task, reward="shaped", model="grid", gamma=0.99)
+    progress = env.get_wrapper_attr("progress")
+    evaluator = progress._evaluate
+    assert evaluator._keys is not None  # the grid model's classifiers are keyed
+    rng = np.random.default_rng(0)
+    space = env.observation_space
+    observations = rng.uniform(space.low - 0.05, space.high + 0.05, (3000, *space.shape))
+    batch = progress.furthest(observations.astype(np.float32))
+    for _ in range(2):
+        for obs, furthest in zip(observations.astype(np.float32), batch, strict=True):
+            assert evaluator.holding(obs) == set(np.flatnonzero(evaluator(obs)).tolist())
+            floor = int(rng.integers(0, progress.final + 1))
+            assert progress.advance(floor, obs) == max(floor, int(furthest))
