@@ -128,7 +128,7 @@ class PlanProgress:
 
     def advance(self, progress: np.ndarray | int, obs: Any) -> np.ndarray | int:
         """Progress after a step to ``obs``: never smaller than before."""
-        if not batch_shape(obs):
+        if (type(obs) is np.ndarray and obs.ndim == 1) or not batch_shape(obs):  # one obs
             return self._furthest_one(obs, int(progress))
         return np.maximum(progress, self.furthest(obs))
 
