@@ -22,8 +22,7 @@ from typing import Any
 
 from planshape.cli import Handler, subcommand
 from planshape.errors import BadInputError
-from planshape.profiles import PROFILES, get_profile
-from planshape.runner import RESULTS_FOLDER
+from planshape.profiles import PROFILES, RESULTS_ROOT, get_profile
 
 SUITE = Path(__file__).resolve().parent / "suite"
 
@@ -217,7 +216,7 @@ def _profile_of(out: Path, rows: list[dict]) -> str:
 @subcommand("leaderboard", "render the leaderboard again from the stored results")
 def _leaderboard(parser: argparse.ArgumentParser) -> Handler:
     parser.add_argument(
-        "--out", type=Path, default=Path(RESULTS_FOLDER), help="results and leaderboard folder"
+        "--out", type=Path, default=Path(RESULTS_ROOT), help="results and leaderboard folder"
     )
     parser.add_argument("--profile", default=None, help="profile named in the header")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")

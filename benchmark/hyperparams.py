@@ -108,9 +108,6 @@ TABLE: dict[tuple[str, str], dict[str, Any]] = {
     **{(f, "PPO"): PPO_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
     **{(f, "SAC"): SAC_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
 }
-#: the algorithms that have a table of their own; every learner id maps to one of them
-#: (``SBX-SAC`` shares ``SAC``'s: :mod:`planshape.learners`)
-ALGORITHMS = ("PPO", "SAC", "SAC-default")
 
 
 def family(task_id: str) -> str:

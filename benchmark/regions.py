@@ -86,15 +86,16 @@ class Lattice:
         self.pitch = float(pitch)
         self.origin = self.centres[0].copy() if len(self.centres) else np.zeros(2)
         self._ox, self._oy = self.origin.tolist()
-        self._cells = {self._cell(x, y): i for i, (x, y) in enumerate(self.centres.tolist())}
+        self._cells = {self.cell(x, y): i for i, (x, y) in enumerate(self.centres.tolist())}
 
-    def _cell(self, x: float, y: float) -> tuple[int, int]:
+    def cell(self, x: float, y: float) -> tuple[int, int]:
+        """The lattice index of the cell that contains ``(x, y)`` (inside the grid or not)."""
         return round((x - self._ox) / self.pitch), round((y - self._oy) / self.pitch)
 
     def containing(self, x: float, y: float) -> list[int]:
         """Positions (in ``centres``) of the cell that contains ``(x, y)``: one, or none
         outside the grid."""
-        hit = self._cells.get(self._cell(x, y))
+        hit = self._cells.get(self.cell(x, y))
         return [] if hit is None else [hit]
 
     def contains(self, points: np.ndarray, centres: np.ndarray) -> np.ndarray:

@@ -25,7 +25,7 @@ Floating-point results are identical on the same machine and library versions; a
 or library versions they may differ in the last digits.
 
 Example:
-    >>> from planshape.profiles import RunKey
+    >>> from planshape.profiles import RESULTS_ROOT, RunKey
     >>> key = RunKey("planshape/Reach-v0", "sparse", "PPO", 0, 2048)
     >>> spec = RunSpec.create(key, "smoke", eval_every=1024, eval_episodes=2)
     >>> len(spec.run_id)
@@ -52,7 +52,7 @@ import numpy as np
 
 from planshape.errors import BadInputError
 from planshape.hyperparams import hyperparameters
-from planshape.profiles import RunKey
+from planshape.profiles import RESULTS_ROOT, RunKey
 from planshape.registration import instance_set, task_spec
 
 PACKAGES = (
@@ -175,16 +175,12 @@ def code_version() -> str:
                 "--untracked-files=no",
                 "--",
                 ".",
-                f":(exclude){RESULTS_FOLDER}",
+                f":(exclude){RESULTS_ROOT}",
             )
         except (OSError, subprocess.SubprocessError):
             continue
         return described + ("-dirty" if changed else "")
     return f"planshape {package_versions().get('planshape', '?')}"
-
-
-#: the default results folder, relative to the repository root
-RESULTS_FOLDER = "leaderboard"
 
 
 def _git(folder: Path, *args: str) -> str:

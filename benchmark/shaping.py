@@ -68,7 +68,7 @@ class PotentialShaping(gymnasium.Wrapper):
         self,
         env: gymnasium.Env,
         potential: Potential,
-        progress: PlanProgress | None,
+        progress: PlanProgress,
         *,
         gamma: float,
         geometry: Geometry | None = None,
@@ -79,8 +79,6 @@ class PotentialShaping(gymnasium.Wrapper):
             raise BadInputError(
                 f"gamma must be a number in (0, 1], the learner's discount; got {gamma!r}"
             )
-        if progress is None and plans is None:
-            raise BadInputError("PotentialShaping needs a plan's progress, or plans per instance")
         self.potential = potential
         self.progress = progress
         self.geometry = geometry

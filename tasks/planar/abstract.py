@@ -133,6 +133,13 @@ class Places:
         owners: list[int] = self._owners  # type: ignore[attr-defined]
         return sorted({owners[r] for r in regions})
 
+    def cell(self, x: float, y: float) -> tuple[int, int]:
+        """A grid table's lattice index of the cell containing ``(x, y)``: what
+        :meth:`containing` answers is a function of it."""
+        if not self.grid:
+            raise ValueError("only grid places have cells")
+        return self._finder.cell(x, y)  # type: ignore[attr-defined]
+
     def contains_centres(self, points: np.ndarray, centres: np.ndarray) -> np.ndarray:
         """``points`` (..., 2) against regions of this table centred at ``centres`` (k, 2)."""
         if self.grid:
@@ -193,7 +200,7 @@ class InPlace:
         function of it: :class:`planshape.abstraction.Vectorized`'s ``key``), else None."""
         if len(self.places) != 1 or not self.places[0].grid:
             return None
-        cell = self.places[0]._finder._cell  # type: ignore[attr-defined]
+        cell = self.places[0].cell
         position = self.position
         return lambda obs: cell(*obs[position].tolist())
 

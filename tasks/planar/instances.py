@@ -42,7 +42,7 @@ from planshape.errors import UnknownIdError
 from planshape.registration import AbstractModel
 from planshape.tasks.planar.abstract import Grid
 from planshape.tasks.planar.geometry import PAPER_GEOMETRY, Point, Rect
-from planshape.tasks.planar.oracle import _segment_clear
+from planshape.tasks.planar.oracle import segment_clear
 from planshape.tasks.planar.paper_models import PUSH_CELL, push_model, reaching_model
 
 G = PAPER_GEOMETRY
@@ -84,7 +84,7 @@ def _point(rng: np.random.Generator, region: Rect) -> Point:
 
 
 def _needs_detour(start: Point, goal: Point, walls: tuple[Rect, ...]) -> bool:
-    return not _segment_clear(start, goal, walls, G.ee_radius)
+    return not segment_clear(start, goal, walls, G.ee_radius)
 
 
 def _on_grid(grid: Grid, point: Point) -> bool:

@@ -49,7 +49,7 @@ def _toward(
     return np.array((min(max(vx, -1.0), 1.0), min(max(vy, -1.0), 1.0)), dtype=np.float32)
 
 
-def _segment_clear(
+def segment_clear(
     a: Sequence[float], b: Sequence[float], walls: Sequence[Rect], clearance: float
 ) -> bool:
     """Whether the end effector can go straight from ``a`` to ``b`` clear of ``walls``."""
@@ -79,7 +79,7 @@ def reach_oracle(
     walls, step = geometry.reach_walls, geometry.step_size
     clear = geometry.ee_radius + _CLEARANCE
     target: Sequence[float] = goal
-    blocking = [w for w in walls if not _segment_clear(pos, goal, (w,), clear)]
+    blocking = [w for w in walls if not segment_clear(pos, goal, (w,), clear)]
     if blocking:
         wall = blocking[0]
         y = wall.high[1] + clear if goal[1] > wall.center[1] else wall.low[1] - clear
@@ -327,7 +327,7 @@ def route(
         True
     """
     goal = (float(target[0]), float(target[1]))
-    if _segment_clear(start, goal, walls, clearance):
+    if segment_clear(start, goal, walls, clearance):
         return [goal]
     x0, y0 = float(start[0]), float(start[1])
 
@@ -345,7 +345,7 @@ def route(
     while frontier and end is None:
         following = []
         for node in frontier:
-            if _segment_clear(point(node), goal, walls, clearance):
+            if segment_clear(point(node), goal, walls, clearance):
                 end = node
                 break
             for dx in (-1, 0, 1):
@@ -369,7 +369,7 @@ def route(
     kept, i = [], 0
     while i < len(points) - 1:
         j = len(points) - 1
-        while j > i + 1 and not _segment_clear(points[i], points[j], walls, clearance):
+        while j > i + 1 and not segment_clear(points[i], points[j], walls, clearance):
             j -= 1
         kept.append(points[j])
         i = j

@@ -20,7 +20,7 @@ from planshape.registration import task_spec
 from planshape.tasks.planar import PushEnv, ReachEnv, run_oracle
 from planshape.tasks.planar.geometry import PAPER_GEOMETRY as G
 from planshape.tasks.planar.instances import EVAL_SIZE, TRAIN_SIZE, Instance, instance_set
-from planshape.tasks.planar.oracle import _segment_clear, walk_plan
+from planshape.tasks.planar.oracle import segment_clear, walk_plan
 from planshape.tasks.planar.paper_models import PUSH_CELL
 
 RANDOMIZED = {
@@ -66,7 +66,7 @@ def test_every_instance_needs_what_the_fixed_task_needs(task: str) -> None:
         else:
             walls = G.reach_walls if task == "reach" else G.maze_walls
             # the straight way is blocked: the detour is needed
-            assert not _segment_clear(instance.ee_start, instance.goal, walls, G.ee_radius)
+            assert not segment_clear(instance.ee_start, instance.goal, walls, G.ee_radius)
             assert all(w.distance(instance.ee_start) > G.ee_radius for w in walls)
 
 
