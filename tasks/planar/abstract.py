@@ -35,7 +35,7 @@ Example:
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -133,12 +133,14 @@ class Places:
         owners: list[int] = self._owners  # type: ignore[attr-defined]
         return sorted({owners[r] for r in regions})
 
-    def cell(self, x: float, y: float) -> tuple[int, int]:
-        """A grid table's lattice index of the cell containing ``(x, y)``: what
-        :meth:`containing` answers is a function of it."""
+    @property
+    def cell(self) -> Callable[[float, float], tuple[int, int]]:
+        """A grid table's ``cell(x, y)``: the lattice index of the cell containing the point,
+        of which :meth:`containing` is a function (the lattice's own method, so that a
+        shaping step pays one call)."""
         if not self.grid:
             raise ValueError("only grid places have cells")
-        return self._finder.cell(x, y)  # type: ignore[attr-defined]
+        return self._finder.cell  # type: ignore[attr-defined]
 
     def contains_centres(self, points: np.ndarray, centres: np.ndarray) -> np.ndarray:
         """``points`` (..., 2) against regions of this table centred at ``centres`` (k, 2)."""
