@@ -15,8 +15,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import shlex
-import sys
+import signal
 from pathlib import Path
 from typing import Any
 
@@ -93,7 +92,7 @@ def _bench(parser: argparse.ArgumentParser) -> Handler:
     )
     parser.add_argument("--address", help="Ray cluster address, with --executor ray")
     parser.add_argument(
-        "--workers", type=int, default=0, help="parallel runs (default: one per CPU core)"
+        "--workers", type=int, default=None, help="parallel runs (default: one per CPU core)"
     )
     parser.add_argument("-k", help="pytest -k expression to select runs, e.g. 'PPO and grid'")
     parser.add_argument("--no-render", action="store_true", help="do not render the leaderboard")
@@ -115,24 +114,55 @@ def run_bench(args: argparse.Namespace) -> int:
     if profile.archived:
         raise BadInputError(f"--profile {profile.name} cannot be run: {profile.archived}")
     args.out = args.out if args.out is not None else Path(profile.folder)
+    if args.workers is not None and args.workers < 1:
+        raise BadInputError(
+            f"--workers is the number of parallel runs, at least 1, not {args.workers}; leave it "
+            "out for one per CPU core"
+        )
     check_store(args.out, profile.name)
-    resolve_tasks(args.tasks)
-    parse_seeds(args.seeds)
-    if args.workers < 0:
-        raise BadInputError(f"--workers must be positive, not {args.workers}")
+    tasks, seeds = resolve_tasks(args.tasks), parse_seeds(args.seeds)
+    if not any(profile.runs(tasks=tasks, seeds=seeds)):
+        raise BadInputError(
+            f"--tasks/--seeds select no run of profile {profile.name!r}; `planshape bench "
+            f"--profile {profile.name} --dry-run` lists its runs"
+        )
     if args.executor != "ray" and args.address:
         raise BadInputError("--address applies only with --executor ray")
     if args.dry_run:
         return _dry_run(args, profile)
     for reference in args.potential:
         _check_submission(reference)
-    os.environ["PLANSHAPE_BENCH_COMMAND"] = "planshape bench " + shlex.join(sys.argv[2:])
-    status = pytest.main(pytest_arguments(args))
+    with _signals_interrupt() as received:
+        status = pytest.main(pytest_arguments(args))
+    if status == pytest.ExitCode.INTERRUPTED:
+        # pytest has ended the pool's workers; finished runs are stored, the rest resume
+        return 128 + (received[-1] if received else signal.SIGINT)
     if status == pytest.ExitCode.NO_TESTS_COLLECTED:
         raise BadInputError("the selection matches no run; check --tasks, --seeds and -k")
     if status == pytest.ExitCode.USAGE_ERROR:
         return 2
     return 0 if status == pytest.ExitCode.OK else 1
+
+
+class _signals_interrupt:
+    """While the suite runs, SIGTERM (and SIGHUP) interrupt it as Ctrl-C does: pytest then
+    tears the process pool down, so no worker is left training. The signals received are
+    listed, for the exit status (128 + the signal's number, 130 for Ctrl-C)."""
+
+    SIGNALS = (signal.SIGTERM, signal.SIGHUP)
+
+    def __enter__(self) -> list[int]:
+        self.received: list[int] = []
+        self.previous = {s: signal.signal(s, self._interrupt) for s in self.SIGNALS}
+        return self.received
+
+    def _interrupt(self, number: int, _frame: Any) -> None:
+        self.received.append(number)
+        raise KeyboardInterrupt(f"signal {signal.Signals(number).name}")
+
+    def __exit__(self, *_exc: Any) -> None:
+        for number, handler in self.previous.items():
+            signal.signal(number, handler)
 
 
 def _dry_run(args: argparse.Namespace, profile: Any) -> int:
@@ -164,25 +194,28 @@ def _dry_run(args: argparse.Namespace, profile: Any) -> int:
 
 
 def check_store(out: Path, profile: str) -> None:
-    """Refuse, before anything trains, a results folder that holds runs of another profile or
-    of another evaluation protocol: new runs would mix into them.
+    """Refuse, before anything trains, a results folder that cannot take this profile's runs:
+    ``--out`` is not a folder, a stored run file is damaged or unfinished (it would count as a
+    missing run, or be lost), or the folder holds runs of another profile or of another
+    evaluation protocol (new runs would mix into them). Nothing is changed.
 
     Example:
         >>> import tempfile
         >>> check_store(Path(tempfile.mkdtemp()), "smoke")  # an empty folder is fine
     """
     from planshape.runner import EVAL_PROTOCOL
+    from planshape.store import ResultStore
 
-    runs = out / "runs"
+    for folder in (out, *out.parents):
+        if folder.exists() and not folder.is_dir():
+            raise BadInputError(
+                f"--out {out}: {folder} is a file, not a folder; choose a folder for the results"
+            )
+    store = ResultStore(out)
     found: dict[tuple[str, int], str] = {}
-    for path in sorted(runs.glob("*.jsonl")) if runs.is_dir() else ():
-        try:
-            with path.open(encoding="utf-8") as f:
-                first = json.loads(f.readline() or "{}")
-        except (OSError, json.JSONDecodeError):
-            continue  # a damaged file is reported (and redone) by the store, not here
-        if isinstance(first, dict) and "profile" in first:
-            found.setdefault((str(first["profile"]), int(first.get("eval_protocol", 1))), path.name)
+    for path in store.stored():
+        first = store.read(path)[0]
+        found.setdefault((first["profile"], int(first.get("eval_protocol", 1))), path.name)
     foreign = {k: v for k, v in found.items() if k != (profile, EVAL_PROTOCOL)}
     if foreign:
         (other, protocol), example = min(foreign.items())
@@ -231,15 +264,7 @@ def run_leaderboard(args: argparse.Namespace) -> int:
     if not rows:
         raise BadInputError(f"{args.out}: no stored results (runs/*.jsonl); run planshape bench")
     profile = get_profile(args.profile or _profile_of(args.out, rows))
-    header = {
-        "profile": profile.name,
-        "description": profile.description,
-        "command": profile.archived or f"planshape bench --profile {profile.name}",
-        "caveats": list(profile.caveats),
-        "eval_every": profile.eval_every,
-        "eval_episodes": profile.eval_episodes,
-    }
-    render_leaderboard(rows, args.out, header)
+    render_leaderboard(rows, args.out, profile.header(rows))
     if args.json:
         print(json.dumps(json_ready(summarize(rows)), indent=2, sort_keys=True, allow_nan=False))
     else:

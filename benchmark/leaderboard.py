@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import base64
 import html
+import io
 import json
 import math
 import re
@@ -48,6 +49,7 @@ from planshape.scoring import (
     run_curves,
     summarize,
 )
+from planshape.store import write_atomic
 
 __all__ = ["render_leaderboard", "slug", "summary_table"]
 
@@ -536,7 +538,9 @@ def _colors(entries: Iterable[str]) -> dict[str, str]:
 
 def _save(fig: Any, path: Path) -> None:
     # No "Software" (matplotlib version) and no creation time: the bytes depend on the data only.
-    fig.savefig(path, format="png", dpi=_DPI, metadata={"Software": None})
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=_DPI, metadata={"Software": None})
+    write_atomic(path, buffer.getvalue())
 
 
 def _plot_curves(
@@ -715,7 +719,7 @@ def render_leaderboard(
         out / "summary.json": text + "\n",
     }
     for path, content in files.items():
-        path.write_text(content, encoding="utf-8")
+        write_atomic(path, content)
     return sorted([*files, *pngs])
 
 

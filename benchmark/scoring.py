@@ -62,6 +62,7 @@ __all__ = [
     "percentile_interval",
     "probability_of_improvement",
     "probability_of_improvement_ci",
+    "read_run",
     "run_curves",
     "stratified_bootstrap",
     "stratified_bootstrap_ci",
@@ -189,13 +190,77 @@ def validate_row(row: Any, where: str = "row") -> dict[str, Any]:
         raise ResultsError(f"{where}: {exc}") from None
 
 
+def read_run(path: str | Path) -> list[dict[str, Any]]:
+    """The rows of one stored run file, checked to be a whole run.
+
+    A run file is finished only if it is UTF-8 JSON Lines, every row has every column of
+    :data:`COLUMNS`, every row names the same run, and exactly its last row is
+    ``final``: an empty file, or one cut short while it was written, is not a run. Anything
+    else raises :class:`ResultsError` naming the file (and the line) and what to do.
+
+    Example:
+        >>> import tempfile, pathlib
+        >>> path = pathlib.Path(tempfile.mkdtemp()) / "abc.jsonl"
+        >>> _ = path.write_text("")
+        >>> read_run(path)  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        planshape.errors.ResultsError: .../abc.jsonl: empty: ...
+    """
+    path = Path(path)
+    redo = "move the file out of runs/ (or delete it) and run the benchmark again to retrain it"
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ResultsError(
+            f"not UTF-8 text (byte {exc.start}): not a result file, or a damaged one; {redo}",
+            path,
+        ) from None
+    except OSError as exc:
+        raise ResultsError(f"cannot be read ({exc.strerror}); {redo}", path) from None
+    rows: list[dict[str, Any]] = []
+    last_line = 0
+    for number, line in enumerate(text.splitlines(), start=1):
+        if not line.strip():
+            continue
+        try:
+            row = _checked(json.loads(line))
+        except json.JSONDecodeError as exc:
+            raise ResultsError(
+                f"not a JSON row ({exc.msg}, column {exc.colno}); {redo}", path, number
+            ) from None
+        except _RowProblem as exc:
+            raise ResultsError(str(exc), path, number) from None
+        if rows and row["run_id"] != rows[0]["run_id"]:
+            raise ResultsError(
+                f"the row is of run {row['run_id']!r}, the file's first row of run "
+                f"{rows[0]['run_id']!r}; {redo}",
+                path,
+                number,
+            )
+        if rows and rows[-1]["final"]:
+            raise ResultsError(f"a row after the run's final row; {redo}", path, number)
+        rows.append(row)
+        last_line = number
+    if not rows:
+        raise ResultsError(f"empty: no result rows, so not a finished run; {redo}", path)
+    if not rows[-1]["final"]:
+        raise ResultsError(
+            f"truncated: the last row (step {rows[-1]['step']} of a budget of "
+            f"{rows[-1]['budget']}) is not the run's final row; {redo}",
+            path,
+            last_line,
+        )
+    return rows
+
+
 def load_rows(out_dir: str | Path) -> list[dict[str, Any]]:
     """Every result row under ``<out_dir>/runs/*.jsonl``, by file name, then line.
 
-    Temporary files (``*.tmp``, written while a run is being stored) are ignored; blank lines
-    are skipped. A line that is not a JSON object with every column of :data:`COLUMNS` raises
-    :class:`ResultsError` naming the file and the line (also in its ``file`` and ``line``
-    attributes). A missing ``runs/`` folder is an error; an empty one gives no rows.
+    Each file is read with :func:`read_run`, so a damaged or unfinished run file raises
+    :class:`ResultsError` naming it (and the line; also in its ``file`` and ``line``
+    attributes). Temporary files (``.*.tmp``, written while a run is being stored) are ignored.
+    A missing ``runs/`` folder is an error; an empty one gives no rows.
 
     Example:
         >>> import tempfile, pathlib
@@ -211,23 +276,8 @@ def load_rows(out_dir: str | Path) -> list[dict[str, Any]]:
         raise ResultsError(f"no results folder {runs}; run `planshape bench --out {out_dir}` first")
     rows: list[dict[str, Any]] = []
     for path in sorted(runs.glob("*.jsonl")):
-        if ".tmp" in path.suffixes or not path.is_file():
-            continue
-        with path.open(encoding="utf-8") as handle:
-            for number, line in enumerate(handle, start=1):
-                if not line.strip():
-                    continue
-                try:
-                    rows.append(_checked(json.loads(line)))
-                except json.JSONDecodeError as exc:
-                    raise ResultsError(
-                        f"not a JSON row ({exc.msg}, column {exc.colno}); delete the file to "
-                        "re-run that run",
-                        path,
-                        number,
-                    ) from None
-                except _RowProblem as exc:
-                    raise ResultsError(str(exc), path, number) from None
+        if path.is_file():
+            rows += read_run(path)
     return rows
 
 

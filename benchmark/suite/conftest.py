@@ -18,7 +18,7 @@ import time
 
 import pytest
 
-from planshape.suite.session import BenchSession
+from planshape.suite.session import BenchSession, end_with_parent
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -45,7 +45,9 @@ def pytest_configure(config: pytest.Config) -> None:
     config.stash[BenchSession.KEY] = session
     for marker in sorted(session.markers()):
         config.addinivalue_line("markers", f"{marker}: planshape benchmark selection")
-    if not hasattr(config, "workerinput"):  # the controller, not an xdist worker
+    if hasattr(config, "workerinput"):  # an xdist worker of the process pool
+        end_with_parent()
+    else:  # the controller
         config.pluginmanager.register(ProgressLines(config), "planshape-progress")
 
 
@@ -101,6 +103,8 @@ class ProgressLines:
             )
 
     def pytest_terminal_summary(self, terminalreporter) -> None:
+        if not self.total:  # the selection matched no run: nothing is rendered
+            return
         text = self.config.stash[BenchSession.KEY].finish()
         if text:
             terminalreporter.write_sep("=", "planshape leaderboard")

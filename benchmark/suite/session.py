@@ -9,8 +9,8 @@ from __future__ import annotations
 import json
 import os
 import re
-import tempfile
-import time
+import signal
+import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,8 +21,8 @@ import pytest
 from planshape.errors import BadInputError, UnknownIdError
 from planshape.profiles import Profile, RunKey, get_profile
 from planshape.registration import task_ids
-from planshape.runner import RunSpec, code_version, execute
-from planshape.store import ResultStore
+from planshape.runner import RunSpec, execute
+from planshape.store import ResultStore, write_atomic
 
 SHAPED_ENTRY = re.compile(r"^(?P<potential>.+)/(?P<model>[^/]+)$")
 
@@ -59,9 +59,13 @@ def parse_seeds(text: str | None) -> list[int] | None:
     if not text:
         return None
     try:
-        return [int(s) for s in text.split(",") if s.strip()]
+        seeds = [int(s) for s in text.split(",") if s.strip()]
     except ValueError:
         raise BadInputError(f"--seeds takes comma-separated integers, not {text!r}") from None
+    negative = [s for s in seeds if s < 0]
+    if negative:
+        raise BadInputError(f"--seeds: a seed is a non-negative integer, not {negative[0]}")
+    return seeds
 
 
 @dataclass
@@ -76,9 +80,9 @@ class BenchSession:
     executor: str = "local"
     address: str | None = None
     render: bool = True
-    command: str = ""
     collected: int = 0
     store: ResultStore = field(init=False)
+    _checked: dict[str, str] = field(init=False, default_factory=dict)
 
     KEY = pytest.StashKey["BenchSession"]()
 
@@ -97,7 +101,6 @@ class BenchSession:
             executor=option("--executor"),
             address=option("--address"),
             render=not option("--no-render"),
-            command=os.environ.get("PLANSHAPE_BENCH_COMMAND", "pytest benchmark/suite"),
         )
 
     # ---- selection ---------------------------------------------------------------------------
@@ -129,24 +132,25 @@ class BenchSession:
         return self.out / "invariance.json"
 
     def verdict(self, potential: str | None) -> str:
-        """The invariance checker's verdict on ``potential`` (cached in ``<out>``)."""
+        """The invariance checker's verdict on ``potential``, computed once per session by the
+        code that trains (so a changed potential or checker is checked again) and recorded in
+        ``<out>/invariance.json``, which is rewritten only when a verdict changes."""
         if potential is None:
             return "not-applicable"
-        cached = self._verdicts()
-        entry = cached.get(potential)
-        if entry and entry.get("code_version") == code_version():
-            return entry["verdict"]
-        verdict = check_invariance(potential)
-        cached = self._verdicts()
-        cached[potential] = {"verdict": verdict, "code_version": code_version()}
-        _write_json(self.verdict_file, cached)
-        return verdict
+        if potential not in self._checked:
+            self._checked[potential] = check_invariance(potential)
+            recorded = self._verdicts()
+            if recorded.get(potential) != self._checked[potential]:
+                recorded[potential] = self._checked[potential]
+                _write_json(self.verdict_file, recorded)
+        return self._checked[potential]
 
     def _verdicts(self) -> dict[str, Any]:
         try:
-            return json.loads(self.verdict_file.read_text())
-        except (FileNotFoundError, json.JSONDecodeError):
+            recorded = json.loads(self.verdict_file.read_text(encoding="utf-8"))
+        except (FileNotFoundError, UnicodeDecodeError, json.JSONDecodeError):
             return {}
+        return {p: v for p, v in recorded.items() if isinstance(v, str)}
 
     # ---- running -------------------------------------------------------------------------------
 
@@ -156,17 +160,19 @@ class BenchSession:
         for potential in sorted({k.potential for k in self.keys() if k.potential}):
             self.verdict(potential)
 
-    def spec(self, key: RunKey) -> RunSpec:
+    def spec(self, key: RunKey, *, with_verdict: bool = True) -> RunSpec:
+        """The run's spec; its id does not depend on the verdict, which is only computed for
+        a run that trains (``with_verdict``)."""
         return RunSpec.create(
             key,
             self.profile.name,
             self.profile.eval_every,
             self.profile.eval_episodes,
-            invariance=self.verdict(key.potential),
+            invariance=self.verdict(key.potential) if with_verdict else "not-checked",
         )
 
     def is_done(self, key: RunKey) -> bool:
-        return self.store.has(self.spec(key).run_id)
+        return self.store.has(self.spec(key, with_verdict=False).run_id)
 
     def run(self, key: RunKey) -> list[dict[str, Any]]:
         spec = self.spec(key)
@@ -184,19 +190,8 @@ class BenchSession:
         if not rows:
             return ""
         if self.render:
-            render_leaderboard(rows, self.out, self.header())
+            render_leaderboard(rows, self.out, self.profile.header(rows))
         return summary_table(rows)
-
-    def header(self) -> dict[str, Any]:
-        return {
-            "profile": self.profile.name,
-            "description": self.profile.description,
-            "command": self.command,
-            "caveats": list(self.profile.caveats),
-            "eval_every": self.profile.eval_every,
-            "eval_episodes": self.profile.eval_episodes,
-            "rendered": time.strftime("%Y-%m-%d", time.gmtime()),
-        }
 
 
 def check_invariance(potential: str) -> str:
@@ -219,12 +214,24 @@ def _execute_on_ray(spec: RunSpec, address: str | None) -> list[dict[str, Any]]:
     return ray.get(remote.remote(spec))
 
 
+def end_with_parent() -> bool:
+    """Have the kernel end this process (SIGTERM) when its parent dies, so a pool worker never
+    outlives a benchmark that was killed, even with SIGKILL. Linux only (``prctl``); returns
+    whether it was set."""
+    if not sys.platform.startswith("linux"):
+        return False
+    import ctypes
+
+    pr_set_pdeathsig = 1
+    libc = ctypes.CDLL(None, use_errno=True)
+    if libc.prctl(pr_set_pdeathsig, signal.SIGTERM, 0, 0, 0) != 0:
+        return False
+    return os.getppid() != 1  # the parent may have died before the call
+
+
 def _marker(name: str) -> str:
     return re.sub(r"\W", "_", name)
 
 
 def _write_json(path: Path, data: Any) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.NamedTemporaryFile("w", dir=path.parent, delete=False, suffix=".tmp") as f:
-        json.dump(data, f, indent=2, sort_keys=True)
-    os.replace(f.name, path)
+    write_atomic(path, json.dumps(data, indent=2, sort_keys=True) + "\n")

@@ -4,6 +4,7 @@ and the stored results it must not mix with (ARCHITECTURE correctness rules 5 an
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 
 import pytest
@@ -90,8 +91,8 @@ def test_archived_profiles_and_foreign_results_are_refused_before_training(tmp_p
     assert "archived" in capsys.readouterr().err
     runs = tmp_path / "runs"
     runs.mkdir()
-    other = runs / "0123456789abcdef.jsonl"
-    other.write_text(json.dumps({"profile": "default", "task": "planshape/Reach-v0"}) + "\n")
+    stored = next((ROOT / "leaderboard/default-v0/runs").glob("*.jsonl"))  # a whole stored run
+    shutil.copy(stored, runs / stored.name)
     before = sorted(p.name for p in tmp_path.rglob("*"))
     assert main(["bench", "--profile", "smoke", "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err
@@ -121,11 +122,8 @@ def test_a_short_task_name_means_its_newest_version():
 
 def test_dry_run_prints_the_selection_and_its_estimate_and_writes_nothing(tmp_path, capsys):
     out = tmp_path / "results"
-    assert (
-        main(["bench", "--profile", "default", "--tasks", "reach", "--dry-run", "--out", str(out)])
-        == 0
-    )
+    assert main(["bench", "--tasks", "reach,push", "--dry-run", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
-    assert "planshape/Reach-v1" in printed and "SBX-SAC" in printed
-    assert "94 runs; estimated wall time" in printed  # 80 PPO + 14 SBX-SAC reach runs
+    assert "planshape/Reach-v1" in printed and "planshape/Push-v1" in printed
+    assert "55 runs; estimated wall time" in printed  # 40 PPO reach + 15 SBX-SAC push runs
     assert not out.exists()
