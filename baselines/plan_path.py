@@ -121,7 +121,10 @@ class Polyline:
 
     def rest(self, x: Any) -> float:
         """min over points q of the path of |x − q| + the path's length after q."""
-        x = x.tolist() if isinstance(x, np.ndarray) else [float(v) for v in x]
+        if isinstance(x, np.ndarray):
+            x = x.tolist()
+        elif not isinstance(x, list):
+            x = [float(v) for v in x]
         if not self._segments:
             return math.dist(x, self._first)
         if len(x) != 2:

@@ -257,9 +257,11 @@ class PlanarGeometryHooks:
             self._located[subgoal] = targets
         return self._located[subgoal]
 
-    def positions(self, obs: np.ndarray) -> Mapping[str, np.ndarray]:
-        obs = np.asarray(obs)
-        return {entity: obs[s] for entity, (_, _, s) in self.entities.items()}
+    def positions(self, obs: np.ndarray) -> Mapping[str, list[float]]:
+        """Each entity's coordinates in one observation, as plain floats (the distance
+        potentials measure them with ``math``, several times faster than on numpy 2-vectors)."""
+        values = np.asarray(obs).tolist()
+        return {entity: values[s] for entity, (_, _, s) in self.entities.items()}
 
 
 EE = slice(0, 2)
