@@ -78,7 +78,13 @@ class ClassifierError(PlanshapeError):
 
 
 class PotentialError(PlanshapeError):
-    """A potential returned a value that cannot be used (NaN, infinite, wrong shape)."""
+    """A potential cannot be used as it is (it needs hooks the task lacks, it cannot chain
+    its entities, ...)."""
+
+
+class PotentialValueError(PotentialError, BadInputError):
+    """A potential returned something that is not one finite number (``None``, a string, a
+    vector, NaN, an infinity): the potential's code is wrong, CLI exit status 2."""
 
 
 class GammaMismatchError(BadInputError):

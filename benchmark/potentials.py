@@ -24,9 +24,11 @@ from __future__ import annotations
 
 import copy
 import importlib
+import importlib.util
 import math
 import os
 import sys
+import traceback
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -34,7 +36,13 @@ from typing import Any, ClassVar, Generic, Protocol, TypeVar
 
 import numpy as np
 
-from planshape.errors import BadInputError, PotentialError, UnknownIdError
+from planshape.errors import (
+    BadInputError,
+    FileError,
+    PotentialError,
+    PotentialValueError,
+    UnknownIdError,
+)
 from planshape.planning.model import AbstractState
 
 _Value = TypeVar("_Value")
@@ -194,9 +202,18 @@ class Potential(ABC):
         return copied
 
     def __call__(self, ctx: ShapingContext) -> float:
-        value = self.scale * float(self.potential(ctx))
+        raw = self.potential(ctx)
+        try:
+            if isinstance(raw, str | bytes):
+                raise TypeError
+            value = self.scale * float(raw)
+        except (TypeError, ValueError):
+            raise PotentialValueError(
+                f"potential {self.name!r} returned {_describe(raw)} at progress={ctx.progress}, "
+                f"t={ctx.t}; potential(ctx) must return one float"
+            ) from None
         if not math.isfinite(value):
-            raise PotentialError(
+            raise PotentialValueError(
                 f"potential {self.name!r} returned {value} at progress={ctx.progress}, t={ctx.t}; "
                 "a potential must be finite everywhere (guard divisions and logs)"
             )
@@ -243,10 +260,26 @@ def load_reference(reference: str) -> Any:
     try:
         module = importlib.import_module(module_name)
     except ModuleNotFoundError as exc:
+        if exc.name and exc.name != module_name and not module_name.startswith(exc.name + "."):
+            raise BadInputError(
+                f"module {module_name!r} of {reference!r} imports {exc.name!r}, which is not "
+                "installed; install it or remove the import"
+            ) from None
         raise BadInputError(
             f"cannot import module {module_name!r} of {reference!r} ({exc}); is it on sys.path "
             "(run from the folder that holds it, or install it)?"
-        ) from exc
+        ) from None
+    except SyntaxError as exc:  # IndentationError too
+        where = f"{exc.filename}:{exc.lineno}: " if exc.filename else ""
+        raise FileError(
+            f"{where}{type(exc).__name__} in module {module_name!r} of {reference!r}: {exc.msg}; "
+            "fix the file and run again"
+        ) from None
+    except Exception as exc:  # the module's own code raised while it was imported
+        raise BadInputError(
+            f"importing module {module_name!r} of {reference!r} raised {type(exc).__name__}: "
+            f"{exc} ({_innermost(exc, module_name)}); fix the module and run again"
+        ) from None
     try:
         target: Any = module
         for part in attr.split("."):
@@ -254,6 +287,27 @@ def load_reference(reference: str) -> Any:
     except AttributeError as exc:
         raise BadInputError(f"module {module_name!r} has no attribute {attr!r}") from exc
     return target
+
+
+def _describe(value: Any) -> str:
+    """A value's type and a short repr, for messages about what a potential returned."""
+    shape = getattr(value, "shape", None)
+    text = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
+    kind = type(value).__name__ + (f" of shape {tuple(shape)}" if shape is not None else "")
+    return f"{kind} {text}"
+
+
+def _innermost(exc: BaseException, module_name: str) -> str:
+    """``file:line`` of the deepest frame of ``exc`` in the module being imported (else the
+    deepest frame at all)."""
+    frames = traceback.extract_tb(exc.__traceback__)
+    try:
+        spec = importlib.util.find_spec(module_name)
+    except (ImportError, ValueError):
+        spec = None
+    module_file = spec.origin if spec is not None else None
+    chosen = [f for f in frames if module_file and f.filename == module_file] or frames
+    return f"{chosen[-1].filename}:{chosen[-1].lineno}" if chosen else "no traceback"
 
 
 def _current_folder_on_path() -> None:

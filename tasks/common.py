@@ -53,12 +53,28 @@ def generated_dir() -> Path:
 
 def generated_file(stem: str, text: str, suffix: str = ".pddl") -> Path:
     """Write generated PDDL ``text`` to a content-addressed file and return its path, so that a
-    parser or planner error can still name a file and a line."""
-    digest = hashlib.sha256(text.encode()).hexdigest()[:16]
+    parser or planner error can still name a file and a line.
+
+    The name holds the hash of the text, and a file found under it is used only if its bytes
+    still have that hash: a file cut short (a full disk, a killed writer of an older version)
+    or edited by hand is written again, atomically.
+
+    Example:
+        >>> path = generated_file("doc", "(define (problem p))")
+        >>> _ = path.write_text("(define (prob")  # damaged
+        >>> generated_file("doc", "(define (problem p))").read_text()
+        '(define (problem p))'
+    """
+    data = text.encode()
+    digest = hashlib.sha256(data).hexdigest()[:16]
     path = generated_dir() / f"{stem}-{digest}{suffix}"
-    if not path.exists():
-        with tempfile.NamedTemporaryFile("w", dir=path.parent, delete=False, suffix=".tmp") as f:
-            f.write(text)
+    try:
+        intact = hashlib.sha256(path.read_bytes()).hexdigest()[:16] == digest
+    except FileNotFoundError:
+        intact = False
+    if not intact:
+        with tempfile.NamedTemporaryFile("wb", dir=path.parent, delete=False, suffix=".tmp") as f:
+            f.write(data)
         os.replace(f.name, path)
     return path
 

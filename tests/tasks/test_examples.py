@@ -1,5 +1,5 @@
 """The runnable examples in the docstrings of the planar task versions, their models and
-instance sets, and the learners and evaluation protocol, run as tests."""
+instance sets, the learners and evaluation protocol, and the results store, run as tests."""
 
 from __future__ import annotations
 
@@ -23,6 +23,9 @@ MODULES = [
     "planshape.profiles",
     "planshape.runner",
     "planshape.estimate",
+    "planshape.tasks.common",
+    "planshape.store",
+    "planshape.bench",
 ]
 
 
