@@ -3,7 +3,8 @@
 The syntax is parsed by the ``pddl`` package (a lark grammar, so syntax errors carry a line);
 this module then checks what that parser leaves open (undeclared predicates, types and objects,
 arities, the domain a problem names) and keeps the fragment the planning stage executes:
-STRIPS with ``:typing``, ``:negative-preconditions``, ``:equality`` and constants; preconditions
+STRIPS with ``:typing``, ``:negative-preconditions``, ``:equality``, ``:action-costs`` and
+constants (the text is first normalized as Fast Downward reads it, :mod:`.prepass`); preconditions
 are conjunctions of literals and (in)equalities, effects conjunctions of add and delete
 literals, goals conjunctions of atoms. Every name is lower-cased (PDDL is case-insensitive).
 
@@ -28,8 +29,9 @@ from typing import Any
 
 from planshape.errors import PDDLError
 from planshape.planning.model import ActionSchema, Atom, PddlTask, PredicateSignature, format_atom
+from planshape.planning.prepass import prepare
 
-__all__ = ["load_task", "parse_task", "read_pddl", "read_pddl_bytes"]
+__all__ = ["decode_pddl", "load_task", "parse_task", "read_pddl", "read_pddl_bytes"]
 
 _SUPPORTED = (
     "planshape supports STRIPS with :typing, :negative-preconditions, :equality and constants"
@@ -45,8 +47,9 @@ def _syntax(text: str, kind: str, file: str | None) -> Any:
     if not text.strip():
         raise PDDLError(f"the {kind} file is empty", file)
     parser = DomainParser() if kind == "domain" else ProblemParser()
+    prepared = prepare(text, kind, file)
     try:
-        return parser(text)
+        return parser(prepared)
     except UnexpectedEOF:
         raise PDDLError(
             f"{kind} ends early: a parenthesis is not closed", file, _last_line(text)
@@ -101,7 +104,28 @@ def read_pddl(path: str | Path) -> str:
         ...
         planshape.errors.PDDLError: /no/such/domain.pddl: cannot read PDDL file (No such file...)
     """
-    return read_pddl_bytes(path).decode("utf-8", errors="replace")
+    return decode_pddl(read_pddl_bytes(path), path)
+
+
+def decode_pddl(data: bytes, path: str | Path | None) -> str:
+    """PDDL bytes as text; bytes that are not UTF-8 are a :class:`PDDLError` naming the line.
+
+    Example:
+        >>> decode_pddl(b"(define\\n (domain \\xe9))", "d.pddl")  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        planshape.errors.PDDLError: d.pddl:2: not UTF-8 text: byte 0xe9 at offset 17 ...
+    """
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        line = data.count(b"\n", 0, err.start) + 1
+        raise PDDLError(
+            f"not UTF-8 text: byte {data[err.start]:#04x} at offset {err.start} is not valid "
+            "UTF-8 (PDDL is plain text: re-save the file as UTF-8 or ASCII)",
+            path,
+            line,
+        ) from None
 
 
 def read_pddl_bytes(path: str | Path) -> bytes:
@@ -230,6 +254,8 @@ class _Builder:
         add, delete = [], []
         for part in _conjuncts(raw.effect):
             negated, inner = _literal(part)
+            if _is_cost(inner):  # :action-costs: Fast Downward sums them; replay ignores them
+                continue
             if not _is_predicate(inner):
                 raise self.unsupported(part, f"the effect of action {name!r}", "domain")
             atom = self.atom(inner, "domain", f"the effect of action {name!r}", scope)
@@ -329,6 +355,8 @@ class _Builder:
             self.objects[name] = self.type_of(obj, "problem", f"object {name!r}")
         init = []
         for fact in raw.init:
+            if _kind(fact) == "EqualTo" and not _is_equality(fact):  # a cost: (= (f a) 3)
+                continue
             if not _is_predicate(fact):
                 raise self.unsupported(fact, ":init", "problem")
             init.append(self.atom(fact, "problem", ":init", None))
@@ -369,6 +397,11 @@ def _is_predicate(item: Any) -> bool:
 
 def _is_equality(item: Any) -> bool:
     return _kind(item) == "EqualTo" and type(item).__module__.endswith("predicates")
+
+
+def _is_cost(item: Any) -> bool:
+    """``(increase (total-cost) …)``, the one numeric effect of ``:action-costs``."""
+    return _kind(item) == "Increase" and str(getattr(item, "operands", ("",))[0]) == "(total-cost)"
 
 
 def _is_variable(term: Any) -> bool:

@@ -17,7 +17,7 @@ from typing import Literal
 from planshape.planning.cache import PlanCache, cache_key, default_cache_dir
 from planshape.planning.fast_downward import DEFAULT_SEARCH, plan_text, search_arguments
 from planshape.planning.model import Plan, SubgoalStates
-from planshape.planning.parse import parse_task, read_pddl_bytes
+from planshape.planning.parse import decode_pddl, parse_task, read_pddl_bytes
 from planshape.planning.subgoals import subgoal_sequence
 
 __all__ = ["CacheDir", "solve", "solve_text"]
@@ -107,8 +107,8 @@ def _solve(
         hit = cache.load(key)
         if hit is not None:
             return hit
-    domain_text = domain.decode("utf-8", errors="replace")
-    problem_text = problem.decode("utf-8", errors="replace")
+    domain_text = decode_pddl(domain, domain_file)
+    problem_text = decode_pddl(problem, problem_file)
     task = parse_task(domain_text, problem_text, domain_file, problem_file)
     result = plan_text(
         domain_text,
