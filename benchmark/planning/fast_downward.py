@@ -200,7 +200,7 @@ def plan_text(
             if plan_file is None:
                 raise PlannerError(
                     f"Fast Downward reported success on {where} but wrote no plan file; "
-                    f"its output ends: {_tail(output)}"
+                    f"{_tail(output)}"
                 )
             actions, cost = parse_plan(plan_file.read_text(encoding="utf-8"), str(plan_file))
             return PlannerResult(actions, len(actions) if cost is None else cost, search, seconds)
@@ -271,7 +271,7 @@ def _exit_error(
     meaning = _EXIT_MEANINGS.get(code, f"exit status {code}")
     if code < 0:
         meaning = f"killed by signal {-code}"
-    return PlannerError(f"Fast Downward on {where} ({search}): {meaning}; output ends: {tail}")
+    return PlannerError(f"Fast Downward on {where} ({search}): {meaning}: {tail}")
 
 
 _PLAN_LINE = re.compile(r"^\(\s*([^\s()]+)((?:\s+[^\s()]+)*)\s*\)$")
@@ -302,6 +302,16 @@ def parse_plan(text: str, source: str = "plan file") -> tuple[tuple[GroundAction
     return tuple(actions), cost
 
 
-def _tail(output: str, lines: int = 4) -> str:
+def _tail(output: str) -> str:
+    """One line that says why Fast Downward stopped: the exception line of a Python traceback
+    in its output, else its last line; the whole output is written to a log file, named."""
     kept = [line.strip() for line in output.splitlines() if line.strip()]
-    return " | ".join(kept[-lines:]) or "(no output)"
+    if not kept:
+        return "(no output)"
+    errors = [line for line in kept if re.match(r"^[A-Za-z_][\w.]*(Error|Exception)\b", line)]
+    reason = errors[-1] if errors else kept[-1]
+    with tempfile.NamedTemporaryFile(
+        "w", prefix="planshape-fast-downward-", suffix=".log", delete=False, encoding="utf-8"
+    ) as log:
+        log.write(output)
+    return f"{reason} (Fast Downward's whole output: {log.name})"

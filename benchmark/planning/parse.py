@@ -304,11 +304,14 @@ class _Builder:
                 r"\(\s*" + _token(name),
             )
         if len(raw.terms) != signature.arity:
+            # the line of the use: an atom of the predicate with that many arguments
+            count = len(raw.terms)
+            use = r"\(\s*" + _token(name) + r"(?:\s+[^\s()]+){" + str(count) + r"}\s*\)"
             raise self.error(
                 f"predicate {name!r} takes {signature.arity} argument(s), "
                 f"{len(raw.terms)} given in {where}",
                 kind,
-                r"\(\s*" + _token(name),
+                use if _line_of(self.texts[kind], use) else r"\(\s*" + _token(name),
             )
         if scope is not None:  # an action: terms are parameters or constants
             return (name, *(self.term(t, scope, where) for t in raw.terms))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 import time
+from pathlib import Path
 
 import pytest
 
@@ -106,3 +107,22 @@ def test_exit_codes(code, error, message):
     err = _exit_error(code, "noise\nError: bad token\n", "gbfs-ff", "d.pddl", "p.pddl", 60)
     assert type(err) is error
     assert re.search(message, str(err)), str(err)
+
+
+def test_a_planner_traceback_becomes_one_line_and_a_log_file():
+    output = (
+        "INFO     Running translator.\n"
+        "Traceback (most recent call last):\n"
+        '  File "translate.py", line 10, in <module>\n'
+        "    main()\n"
+        '  File "pddl_parser.py", line 99, in parse\n'
+        "    raise SystemExit(1)\n"
+        "translate.pddl_parser.parsing_functions.ParseError: unknown symbol :foo\n"
+        "translate exit code: 31\n"
+    )
+    err = _exit_error(31, output, "astar-lmcut", "d.pddl", "p.pddl", 60)
+    message = str(err)
+    assert "ParseError: unknown symbol :foo" in message
+    assert "Traceback" not in message and 'File "' not in message and "\n" not in message
+    log = re.search(r"whole output: (\S+)\)", message).group(1)
+    assert Path(log).read_text(encoding="utf-8") == output

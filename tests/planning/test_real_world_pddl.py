@@ -132,3 +132,11 @@ def test_what_cannot_be_planned_or_replayed_exits_2_naming_it(tmp_path, capsys, 
         assert main(["plan", str(domain_file), str(problem_file), "--no-cache"]) == 2
         err = capsys.readouterr().err
         assert message in err and "Traceback" not in err, err
+
+
+def test_an_arity_error_points_at_the_use_not_the_declaration(tmp_path, capsys):
+    domain = DOMAIN.replace("(on ?x ?y) (not (clear ?y))", "(on ?x) (not (clear ?y))")
+    domain_file, problem_file = _plan(tmp_path, domain)
+    assert main(["plan", str(domain_file), str(problem_file), "--no-cache"]) == 2
+    err = capsys.readouterr().err
+    assert "domain.pddl:8: predicate 'on' takes 2 argument(s), 1 given" in err, err
