@@ -87,6 +87,17 @@ def _semantic(err: BaseException, kind: str, text: str, file: str | None) -> PDD
     if requirement:
         message = f"add {requirement.group(1)} to :requirements (the {kind} uses it)"
         return PDDLError(message, file, _line_of(text, r"\(\s*:requirements\b"))
+    parents = re.search(
+        r"duplicate name '([^']+)' in typed list already inherits from types \[(.*?)\]", message
+    )
+    if parents:
+        name, first = parents.group(1), ", ".join(re.findall(r"'([^']+)'", parents.group(2)))
+        message = (
+            f"type {name!r} is declared twice, under {first} and again; a PDDL type has one "
+            f"parent: keep one declaration of {name!r} (make the other parent its ancestor if "
+            "it needs both)"
+        )
+        return PDDLError(message, file, _line_of(text, r"\(\s*:types\b"))
     quoted = re.findall(r"'([^']+)'", message)
     line = _line_of(text, _token(quoted[0])) if quoted else None
     return PDDLError(f"invalid {kind}: {message}", file, line)

@@ -113,6 +113,10 @@ def test_action_costs_give_the_cheapest_plan_and_its_cost(tmp_path, capsys):
         ),
         ("; a comment\n\n; and another\n", "the domain file holds no PDDL, only comments"),
         (
+            DOMAIN.replace("(:types block)", "(:types block - thing block - stuff thing stuff)"),
+            "domain.pddl:3: type 'block' is declared twice, under thing and again",
+        ),
+        (
             DOMAIN.encode().replace(b"(handempty))", b"(handempty \xe9))"),
             "domain.pddl:4: not UTF-8 text: byte 0xe9",
         ),
@@ -123,6 +127,7 @@ def test_action_costs_give_the_cheapest_plan_and_its_cost(tmp_path, capsys):
         "duplicate-action",
         "derived",
         "comments-only",
+        "two-parents",
         "not-utf8",
     ],
 )
