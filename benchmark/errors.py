@@ -87,6 +87,11 @@ class PotentialValueError(PotentialError, BadInputError):
     vector, NaN, an infinity): the potential's code is wrong, CLI exit status 2."""
 
 
+class CannotVerifyError(BadInputError):
+    """The invariance checker cannot decide at this input's scale (e.g. a potential so large
+    that ties are below the solvers' precision): exit status 2, with what to change."""
+
+
 class GammaMismatchError(BadInputError):
     """The shaping discount and the learner's discount differ (correctness rule 1)."""
 

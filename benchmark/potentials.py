@@ -32,6 +32,7 @@ import traceback
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any, ClassVar, Generic, Protocol, TypeVar
 
 import numpy as np
@@ -157,6 +158,55 @@ class ShapingContext:
         return self.geometry
 
 
+class _UndeclaredTimeRead(Exception):
+    """Raised inside a potential that uses ``ctx.t`` undeclared; reported with its name."""
+
+
+class _UndeclaredTime:
+    """``ctx.t`` for a potential that does not declare ``time_dependent = True``: any use of it
+    as a number raises, naming what to change (printing it is allowed)."""
+
+    __slots__ = ()
+
+    def _refuse(self, *_: Any) -> Any:
+        raise _UndeclaredTimeRead()
+
+    __int__ = __index__ = __float__ = __bool__ = __hash__ = _refuse
+    __add__ = __radd__ = __sub__ = __rsub__ = __mul__ = __rmul__ = _refuse
+    __truediv__ = __rtruediv__ = __floordiv__ = __rfloordiv__ = __pow__ = __rpow__ = _refuse
+    __mod__ = __rmod__ = __neg__ = __pos__ = __abs__ = _refuse
+    __eq__ = __ne__ = __lt__ = __le__ = __gt__ = __ge__ = _refuse  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        return "<t: not declared>"
+
+    __format__ = lambda self, spec: repr(self)  # noqa: E731
+
+
+#: what an undeclared potential sees as ``ctx.t``
+UNDECLARED_TIME: Any = _UndeclaredTime()
+
+
+def read_only(obs: Any) -> Any:
+    """A read-only view of an observation (an array, or a mapping of arrays); anything else
+    is returned as it is.
+
+    Example:
+        >>> view = read_only(np.zeros(2))
+        >>> view.flags.writeable
+        False
+    """
+    if type(obs) is np.ndarray:
+        if not obs.flags.writeable:
+            return obs
+        view = obs.view()
+        view.flags.writeable = False
+        return view
+    if isinstance(obs, Mapping):
+        return MappingProxyType({k: read_only(v) for k, v in obs.items()})
+    return obs
+
+
 class Potential(ABC):
     """Base class of every potential: implement :meth:`potential`, nothing else.
 
@@ -202,7 +252,33 @@ class Potential(ABC):
         return copied
 
     def __call__(self, ctx: ShapingContext) -> float:
-        raw = self.potential(ctx)
+        """φ of ``ctx`` times ``scale``, checked to be one finite number.
+
+        The potential sees a read-only view of the observation (the learner's own array, which
+        it must not change) and, unless it declares ``time_dependent = True``, a time index it
+        cannot use: reading ``ctx.t`` undeclared is an error (the invariance checker would
+        otherwise check it as if φ(x, 0) held at every t)."""
+        obs, t = ctx.obs, ctx.t
+        ctx.obs = read_only(obs)
+        if not self.time_dependent:
+            ctx.t = UNDECLARED_TIME
+        try:
+            raw = self.potential(ctx)
+        except _UndeclaredTimeRead:
+            raise PotentialValueError(
+                f"potential {self.name!r} reads ctx.t without declaring time_dependent = True; "
+                "set time_dependent = True on its class (the invariance checker then checks "
+                "every time index), or do not read the time"
+            ) from None
+        except ValueError as exc:
+            if "read-only" not in str(exc):
+                raise
+            raise PotentialValueError(
+                f"potential {self.name!r} writes into ctx.obs, the observation the learner "
+                "receives; work on a copy (ctx.obs.copy())"
+            ) from None
+        finally:
+            ctx.obs, ctx.t = obs, t
         try:
             if isinstance(raw, str | bytes):
                 raise TypeError

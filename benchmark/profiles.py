@@ -8,10 +8,12 @@ seeds with one training budget (environment steps) per task. An *entry* is ``"sp
 profile       what it runs (results folder)
 ============  ==============================================================================
 smoke         reach, three entries, PPO, one seed, 4k steps (about a minute; a test runs it)
-default       the source paper's grid on its tasks (v1) with PPO × 5 seeds, plus SAC on the
-              main entries × 2 seeds (5 on push), plus the planning-derived potentials on the
-              grid models and the goal-distance control × PPO × 5 seeds — what
-              ``tox -e bench`` runs (``leaderboard/``)
+default       the source paper's tasks (v1), 5 seeds per cell, budgets from learning curves:
+              reach and maze-reach × {sparse, dense, plan-based × 3 models, plan-distance,
+              plan-path, goal-distance on the grid model} × PPO, push × {sparse, dense,
+              plan-distance/grid} × SAC — what ``tox -e bench`` runs, under an hour on 2 cores
+              (``leaderboard/``)
+planar        the v1 tasks' full grid × PPO and SAC × 5 seeds at the default's budgets (hours)
 instances     the task-instance distributions × {sparse, dense, plan-based, plan-distance,
               plan-path, goal-distance} × PPO × 5 seeds, scored on the held-out instances
 paper         the source paper's full grid: reach, push, maze-reach × {sparse, dense, 3

@@ -34,7 +34,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse import csgraph
 
-from planshape.errors import BadInputError, PlanshapeError
+from planshape.errors import BadInputError, PlanshapeError, PotentialValueError
 from planshape.invariance.mdp import TabularMDP
 from planshape.potentials import Geometry, Potential, ShapingContext
 from planshape.progress import PlanProgress
@@ -131,8 +131,14 @@ class AugmentedMDP:
                         abstraction=abstraction,
                     )
                 )
-        except BadInputError:
-            raise
+        except BadInputError as exc:
+            if not isinstance(exc, PotentialValueError):
+                raise
+            s, p = int(self.state[x]), int(self.plan_progress[x])
+            raise PotentialValueError(
+                f"potential {potential.name!r} failed at state {s} (observation "
+                f"{np.round(observations[s], 4).tolist()}, progress {p}, t {t}): {exc}"
+            ) from None
         except Exception as exc:  # a submitted potential's own failure is bad input
             s, p = int(self.state[x]), int(self.plan_progress[x])
             kind = "failed" if isinstance(exc, PlanshapeError) else f"raised {type(exc).__name__}"

@@ -26,11 +26,13 @@ from typing import Any
 
 import numpy as np
 
+from planshape.errors import CannotVerifyError
 from planshape.invariance.settings import DEFAULT_PRESETS, Setting
 from planshape.invariance.shaped import PotentialBased, Shaping, Step
 from planshape.invariance.solve import backward_induction, value_iteration
 from planshape.invariance.toys import ToyProblem, default_toys, make_toy
 from planshape.invariance.verdict import (
+    MAX_SCALE_RATIO,
     RELATIVE_TOLERANCE,
     Comparison,
     InvarianceReport,
@@ -62,17 +64,21 @@ def check_shaping(
     dynamic = shaping.time_dependent(aug, setting.horizon)
     solve = _discounted_layers if setting.kind == "discounted" else _finite_layers
     appendix_gap, appendix_holds = 0.0, True
-    for t, q_lifted, q_plus, q_shaped in solve(toy, shaping, setting, dynamic):
+    # what the Q-tables cannot show comes first: a φ that is not a potential is not solved
+    not_a_potential = shaping.probe(aug, setting)
+    layers = () if not_a_potential else solve(toy, shaping, setting, dynamic)
+    for t, q_lifted, q_plus, q_shaped in layers:
         if q_plus is not None:  # appendix 8.1: progress in the state changes no Q-value
             gap = float(np.abs(q_plus - q_lifted)[active].max(initial=0.0))
             appendix_gap = max(appendix_gap, gap)
             appendix_holds &= gap <= tie_tolerance(q_lifted[active], relative=relative)
+        _check_scale(q_lifted[active], q_shaped[active], shaping, toy, setting)
         comparison.add(q_lifted, q_shaped, t)
     return MdpVerdict(
         mdp=toy.name,
         shaping=shaping.name,
         setting=setting,
-        preserved=comparison.mismatches == 0 and appendix_holds,
+        preserved=comparison.mismatches == 0 and appendix_holds and not not_a_potential,
         time_dependent=dynamic,
         checked=comparison.checked,
         mismatches=comparison.mismatches,
@@ -83,7 +89,28 @@ def check_shaping(
         state_action_pairs=aug.mdp.n_pairs,
         seconds=time.perf_counter() - started,
         counterexample=comparison.counterexample(),
+        not_a_potential=not_a_potential,
     )
+
+
+def _check_scale(
+    q_original: np.ndarray,
+    q_shaped: np.ndarray,
+    shaping: Shaping,
+    toy: ToyProblem,
+    setting: Setting,
+) -> None:
+    """Refuse a check whose shaped Q-values are too large to resolve the tie tolerance."""
+    original = max(1.0, float(np.abs(q_original).max(initial=0.0)))
+    shaped = float(np.abs(q_shaped).max(initial=0.0))
+    if shaped > MAX_SCALE_RATIO * original:
+        raise CannotVerifyError(
+            f"cannot verify {shaping.name!r} on {toy.name} ({setting.label}): its shaped "
+            f"Q-values reach {shaped:.3g}, {shaped / original:.3g} times the task's "
+            f"({original:.3g}), beyond the {MAX_SCALE_RATIO:g} at which ties of the task's "
+            "scale can be told apart; check the potential at unit scale (scale=1: shaping is "
+            "scale-equivariant, so the verdict is the same at any scale)"
+        )
 
 
 def _discounted_layers(

@@ -115,15 +115,28 @@ def _run(args: argparse.Namespace) -> int:
     return 0 if report.preserved else 1
 
 
+def _refusal(build: Any, expected: str) -> str:
+    """The message with which a refused control is refused ("" if it is not)."""
+    from planshape.invariance.check import check_potential
+
+    try:
+        check_potential(build(), mdps=["reach"], settings=["discounted"])
+    except BadInputError as err:
+        return str(err) if expected in str(err) else ""
+    return ""
+
+
 def _run_controls(args: argparse.Namespace) -> int:
-    from planshape.invariance.controls import CONTROLS, run_control
+    from planshape.invariance.controls import CONTROLS, REFUSED, run_control
 
     results = [(control, run_control(control)) for control in CONTROLS]
-    caught = all(not verdict.preserved for _, verdict in results)
+    refused = [(name, _refusal(build, expected)) for name, build, expected in REFUSED]
+    caught = all(not verdict.preserved for _, verdict in results) and all(m for _, m in refused)
     if args.json:
         _print_json(
             {
                 "caught": caught,
+                "refused": [{"control": n, "refused": bool(m), "message": m} for n, m in refused],
                 "controls": [
                     {
                         "control": c.name,
@@ -143,7 +156,14 @@ def _run_controls(args: argparse.Namespace) -> int:
             print(f"  why: {control.argument}")
             if verdict.counterexample is not None:
                 print(f"  counterexample: {verdict.counterexample.describe()}")
-        print(f"{sum(not v.preserved for _, v in results)} of {len(results)} controls caught")
+            if verdict.not_a_potential:
+                print(f"  counterexample: {verdict.not_a_potential}")
+        for name, message in refused:
+            print(f"{'refused' if message else 'MISSED'}: {name} — {message or 'accepted'}")
+        print(
+            f"{sum(not v.preserved for _, v in results)} of {len(results)} controls caught, "
+            f"{sum(bool(m) for _, m in refused)} of {len(refused)} refused (exit 2 for a user)"
+        )
     return 0 if caught else 1
 
 

@@ -23,9 +23,25 @@ flag. Each control is a mistake, a toy MDP and a setting, with the argument why 
     ``reach-episodic``: the agent stays where it is. (Reading the *previous* action would be
     harmless: that is a potential over (s, a_prev), a valid augmented state.)
 
+(e) ``hidden-state`` — a ``Potential`` that remembers its last output ψ and returns
+    φ(s') = (ψ + 2·[s' on an intermediate subgoal]) / γ. Each φ the wrapper computes along an
+    episode then gives F = γ·φ(s') − φ(s) = 2·[s' on an intermediate subgoal]: exactly (a)'s
+    bonus, disguised as a potential, and the optimum parks next to the goal on ``reach``. A
+    table filled once per state is a valid potential whatever it holds, so only calling φ along
+    episodes, in different orders, shows it (:func:`planshape.invariance.probes.hidden_state`).
+(f) ``growth`` — a declared time-dependent φ(s, t) = 1.2^t · max_idx/n under γ = 0.95 on
+    ``reach``: staying on an intermediate subgoal earns F_t = (1.2γ − 1)·φ_t > 0, growing
+    without bound, so never entering the goal pays more than entering it. Capping t at the
+    horizon makes it look bounded; γ^t·φ is probed up to 32 horizons
+    (:func:`planshape.invariance.probes.growth`).
+
+What the API makes impossible is refused instead (exit 2, :data:`REFUSED`): a potential that
+reads ``ctx.t`` without declaring ``time_dependent``, one that writes into ``ctx.obs`` (the
+learner's observation), and one so large that ties drown in the solvers' precision.
+
 Example:
     >>> [c.name for c in CONTROLS]
-    ['subgoal-bonus', 'no-gamma', 'no-terminal-zero', 'action-potential']
+    ['subgoal-bonus', 'no-gamma', 'no-terminal-zero', 'action-potential', 'hidden-state', 'growth']
     >>> run_control(CONTROLS[0]).preserved
     False
 """
@@ -47,7 +63,10 @@ from planshape.potentials import Potential, ShapingContext, make_potential
 
 __all__ = [
     "CONTROLS",
+    "REFUSED",
     "ActionPotential",
+    "GrowingPlanBased",
+    "HiddenStateBonus",
     "NegativeControl",
     "ShiftedPlanBased",
     "SubgoalBonus",
@@ -97,6 +116,53 @@ class ActionPotential(Shaping):
         if step.horizon_end == "terminated":
             after = np.zeros_like(after)
         return step.gamma * after - (psi[aug.entry_states] + table)
+
+
+class HiddenStateBonus(Potential):
+    """φ(s') = (last output + bonus·[s' on an intermediate subgoal]) / γ: control (a)'s bonus,
+    carried in state across calls (control (e))."""
+
+    def __init__(self, bonus: float = 2.0, gamma: float = 0.95, scale: float = 1.0):
+        super().__init__(scale)
+        self.bonus, self.gamma, self._last = bonus, gamma, 0.0
+
+    def potential(self, ctx: ShapingContext) -> float:
+        held = ctx.abstract_state
+        on_subgoal = any(sub <= held for sub in ctx.subgoals[1:-1])
+        self._last = (self._last + self.bonus * on_subgoal) / self.gamma
+        if abs(self._last) > 1e6:  # stay finite over long probes; the shaping is unchanged
+            self._last = 0.0
+        return self._last
+
+
+class GrowingPlanBased(Potential):
+    """φ(s, t) = base^t · max_idx / n: declared time-dependent, growing faster than 1/γ when
+    base·γ > 1 (control (f))."""
+
+    time_dependent = True
+
+    def __init__(self, base: float = 1.2, scale: float = 1.0):
+        super().__init__(scale)
+        self.base = base
+        self._plan = PlanBased()
+
+    def potential(self, ctx: ShapingContext) -> float:
+        return self.base**ctx.t * self._plan.potential(ctx)
+
+
+class ReadsTimeUndeclared(Potential):
+    """Reads ``ctx.t`` without declaring ``time_dependent`` (refused)."""
+
+    def potential(self, ctx: ShapingContext) -> float:
+        return ctx.progress / max(ctx.final, 1) + (0.5 if ctx.t == 7 else 0.0)
+
+
+class WritesObservation(Potential):
+    """Writes into ``ctx.obs``, the learner's observation (refused)."""
+
+    def potential(self, ctx: ShapingContext) -> float:
+        ctx.obs[0] = 0.0
+        return 0.0
 
 
 @dataclass(frozen=True)
@@ -151,6 +217,29 @@ CONTROLS: tuple[NegativeControl, ...] = (
         lambda: ActionPotential(make_potential("plan-based"), {"stay": -2.0}),
         "an endless stay earns 2 of shaping, the goal only 1",
     ),
+    NegativeControl(
+        "hidden-state",
+        "(e) a potential that keeps state across calls: a disguised subgoal bonus",
+        "reach",
+        "discounted",
+        lambda: PotentialBased(HiddenStateBonus(2.0, gamma=0.95)),
+        "along an episode F = 2·[on an intermediate subgoal]: (a)'s bonus",
+    ),
+    NegativeControl(
+        "growth",
+        "(f) a time-dependent potential growing faster than 1/γ",
+        "reach",
+        "discounted",
+        lambda: PotentialBased(GrowingPlanBased(1.2)),
+        "staying on a subgoal earns (1.2γ − 1)·φ_t per step, without bound",
+    ),
+)
+
+#: potentials the API refuses (exit 2) rather than checks: (name, potential, message part)
+REFUSED: tuple[tuple[str, Callable[[], Potential], str], ...] = (
+    ("undeclared-time", ReadsTimeUndeclared, "reads ctx.t without declaring time_dependent"),
+    ("writes-observation", WritesObservation, "writes into ctx.obs"),
+    ("magnitude", lambda: make_potential("plan-based", scale=1e9), "cannot verify"),
 )
 
 

@@ -36,6 +36,8 @@ from weakref import WeakKeyDictionary
 import numpy as np
 
 from planshape.invariance.augment import AugmentedMDP
+from planshape.invariance.probes import growth, hidden_state
+from planshape.invariance.settings import Setting
 from planshape.potentials import Potential, make_potential
 
 __all__ = ["PotentialBased", "Shaping", "Step"]
@@ -67,6 +69,10 @@ class Shaping(ABC):
     def time_dependent(self, aug: AugmentedMDP, horizon: int) -> bool:
         """Whether the bonus depends on ``t`` (then every time layer is solved separately)."""
         return False
+
+    def probe(self, aug: AugmentedMDP, setting: Setting) -> str:
+        """A counterexample the Q-tables cannot show, or ``""`` (see :class:`PotentialBased`)."""
+        return ""
 
     @abstractmethod
     def transition_bonus(self, aug: AugmentedMDP, step: Step) -> np.ndarray:
@@ -100,22 +106,21 @@ class PotentialBased(Shaping):
         self.zero_at_termination = zero_at_termination
         self.name = self.potential.name
         # per augmented MDP (weakly: a toy built for one check must not pin memory, nor let a
-        # later MDP at the same address see its tables): t -> φ table, horizon -> reads time
+        # later MDP at the same address see its tables): t -> φ table
         self._tables: WeakKeyDictionary[AugmentedMDP, dict[int, np.ndarray]] = WeakKeyDictionary()
-        self._reads_time: WeakKeyDictionary[AugmentedMDP, dict[int, bool]] = WeakKeyDictionary()
 
     def time_dependent(self, aug: AugmentedMDP, horizon: int) -> bool:
-        """Declared by ``Potential.time_dependent``, or detected: φ differs between ``t = 0``
-        and ``t = 1`` or ``t = horizon`` somewhere."""
-        if self.potential.time_dependent:
-            return True
-        known = self._reads_time.setdefault(aug, {})
-        if horizon not in known:
-            first = self._table(aug, 0)
-            known[horizon] = any(
-                not np.array_equal(first, self._table(aug, t)) for t in {1, horizon}
-            )
-        return known[horizon]
+        """As declared by ``Potential.time_dependent``: an undeclared potential cannot read
+        the time (:meth:`planshape.potentials.Potential.__call__`)."""
+        return self.potential.time_dependent
+
+    def probe(self, aug: AugmentedMDP, setting: Setting) -> str:
+        """What the table cannot show (:mod:`planshape.invariance.probes`): φ keeping state
+        across calls, and, discounted, γ^t·φ that does not vanish; ``""`` if neither."""
+        found = hidden_state(self.potential, aug, setting.horizon, self._table(aug, 0))
+        if not found and setting.kind == "discounted":
+            found = growth(self.potential, aug, setting.gamma, setting.horizon)
+        return found
 
     def values(self, aug: AugmentedMDP, t: int, time_dependent: bool) -> np.ndarray:
         """φ(x, t) of every augmented state (φ(x, 0) when φ does not depend on time)."""

@@ -3,8 +3,13 @@
 **Tolerance for ties.** In a table of Q-values (one time layer of one MDP), action ``a`` is
 optimal in state ``x`` when
 
-    Q(x, a) ≥ max_b Q(x, b) − τ,     τ = 1e-8 · max(1, max |Q| over the original and shaped
-                                                    layers being compared).
+    Q(x, a) ≥ max_b Q(x, b) − τ,     τ = 1e-8 · max(1, max |Q| of the original layer).
+
+τ does not grow with the shaping: a potential of size 10^9 would otherwise make every action
+tie and the check vacuous (and hide an invalid shaping added to it). A shaped Q-table more than
+:data:`MAX_SCALE_RATIO` times the original's cannot resolve τ (the solvers' error grows with
+the scale), so that check is refused as unverifiable (:class:`CannotVerifyError`) rather than
+passed.
 
 The solvers are accurate to about 1e-12 of the same scale, four orders of magnitude below τ, so
 exact ties (two paths of the same length) stay ties after shaping, and real differences larger
@@ -42,6 +47,10 @@ __all__ = [
 
 #: τ relative to the Q-value scale (see the module docstring)
 RELATIVE_TOLERANCE = 1e-8
+#: the largest shaped/original Q scale at which τ is still resolved: the solvers are accurate
+#: to about 1e-12 of their scale, so at 10^3 times the original's their error is 1e-9 of it,
+#: ten times below τ
+MAX_SCALE_RATIO = 1e3
 
 
 def tie_tolerance(*tables: np.ndarray, relative: float = RELATIVE_TOLERANCE) -> float:
@@ -114,6 +123,9 @@ class MdpVerdict:
         augmented_states, state_action_pairs: size of the augmented MDP (per time layer).
         seconds: wall time of the check.
         counterexample: the mismatch with the largest regret, if any.
+        not_a_potential: what the Q-tables cannot show, with its counterexample
+            (:mod:`planshape.invariance.probes`): φ keeps state across calls, or γ^t·φ grows;
+            a non-empty value fails the verdict.
     """
 
     mdp: str
@@ -130,11 +142,14 @@ class MdpVerdict:
     state_action_pairs: int
     seconds: float
     counterexample: Counterexample | None = None
+    not_a_potential: str = ""
 
     @property
     def status(self) -> str:
         if self.preserved:
             return "preserved"
+        if self.not_a_potential:
+            return "violated (not a potential)"
         if self.mismatches and not self.harmful:
             return "violated (ties)"
         return "violated"
@@ -227,7 +242,7 @@ class Comparison:
         mask = self.compared
         if not mask.any():
             return
-        tol = tie_tolerance(q_original[mask], q_shaped[mask], relative=self.relative)
+        tol = tie_tolerance(q_original[mask], relative=self.relative)
         best_o, best_s = optimal_actions(q_original, tol), optimal_actions(q_shaped, tol)
         differ = mask & np.any(best_o != best_s, axis=1)
         regret = q_original.max(axis=1) - np.where(best_s, q_original, np.inf).min(axis=1)

@@ -141,6 +141,8 @@ def test_non_finite_potential_raises_naming_the_potential():
         env.reset(seed=0)
 
     class Infinite(Potential):
+        time_dependent = True
+
         def potential(self, ctx: ShapingContext) -> float:
             return float("inf") if ctx.t else 0.0
 

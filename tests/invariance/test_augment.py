@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import math
 
+import gymnasium
 import numpy as np
 import pytest
 
-from planshape.errors import BadInputError
+from planshape.errors import BadInputError, PotentialValueError
 from planshape.invariance.shaped import PotentialBased, Step
 from planshape.invariance.solve import value_iteration
 from planshape.invariance.toys import make_toy
@@ -121,10 +122,19 @@ class SecretClock(Potential):
         return ctx.progress + 0.1 * ctx.t
 
 
-def test_undeclared_time_dependence_is_detected():
+def test_reading_the_time_undeclared_is_refused_naming_the_potential():
+    """Checked as if φ(x, 0) held at every t, a potential that reads ctx.t undeclared would
+    be checked wrongly: reading it is refused, in the checker and in the wrapper alike."""
     aug = make_toy("random-continuing").augmented
-    assert PotentialBased(SecretClock()).time_dependent(aug, 8)
+    with pytest.raises(PotentialValueError, match="SecretClock' reads ctx.t without declaring"):
+        PotentialBased(SecretClock()).values(aug, 0, time_dependent=False)
+    env = gymnasium.make(
+        "planshape/Reach-v1", reward="shaped", potential=SecretClock(), model="grid", gamma=0.99
+    )
+    with pytest.raises(PotentialValueError, match="time_dependent = True"):
+        env.reset(seed=0)
     assert not PotentialBased("plan-based").time_dependent(aug, 8)
+    assert PotentialBased("time-varying").time_dependent(aug, 8)
 
 
 @pytest.mark.parametrize("potential", ["plan-based", "time-varying", "distance-varying"])

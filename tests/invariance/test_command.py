@@ -145,7 +145,8 @@ def test_list(capsys):
 def test_controls_are_all_caught(capsys):
     status, out, _ = run(capsys, "--controls")
     assert status == 0
-    assert out.count("caught:") == 4 and "4 of 4 controls caught" in out
+    assert out.count("caught:") == 6 and "6 of 6 controls caught, 3 of 3 refused" in out
+    assert out.count("refused:") == 3 and "MISSED" not in out
 
 
 def test_a_potential_in_the_current_folder(capsys, tmp_path, monkeypatch):
