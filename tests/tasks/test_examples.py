@@ -26,6 +26,9 @@ MODULES = [
     "planshape.tasks.common",
     "planshape.store",
     "planshape.bench",
+    "planshape.testing",
+    "planshape.invariance.probes",
+    "planshape.planning.prepass",
 ]
 
 
