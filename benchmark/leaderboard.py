@@ -41,6 +41,7 @@ import numpy as np
 from planshape.errors import ResultsError
 from planshape.scoring import (
     DENSE,
+    MIN_CI_SEEDS,
     SPARSE,
     aggregate,
     describe_runs,
@@ -103,9 +104,14 @@ def _num(x: Any, digits: int = 3) -> str:
 
 
 def _ci(row: Mapping[str, Any], column: str, digits: int = 3) -> str:
+    """``value [low, high]``; with fewer than :data:`MIN_CI_SEEDS` seeds (per task, for an
+    aggregate) the interval is not shown but marked ``(n=2: no CI)``."""
     value, low, high = row[column], row[f"{column}_low"], row[f"{column}_high"]
     if _missing(value):
         return "n/a"
+    seeds = row.get("n_seeds", row.get("min_seeds"))
+    if seeds is not None and seeds < MIN_CI_SEEDS:
+        return f"{_num(value, digits)} (n={seeds}: no CI)"
     if _missing(low) or _missing(high):
         return _num(value, digits)
     return f"{_num(value, digits)} [{_num(low, digits)}, {_num(high, digits)}]"
@@ -194,8 +200,18 @@ def _aggregate_cells(row: Mapping[str, Any], ci_label: str) -> list[Cell]:
         ),
         (f"P(improve over sparse) {ci_label}", _ci(row, "p_improve", 2), value("p_improve")),
         ("Curve area", _num(row["curve_area_mean"]), value("curve_area_mean")),
+        (
+            "Not normalized on (sparse = dense)",
+            ", ".join(_short_task(t) for t in row.get("normalized_success_tasks_excluded", ()))
+            or "none",
+            None,
+        ),
         ("Invariance", row["invariance"], None),
     ]
+
+
+def _short_task(task: str) -> str:
+    return task.split("/", 1)[-1]
 
 
 def _by_task_and_algo(
@@ -283,7 +299,9 @@ def _caveats(header: Mapping[str, Any], info: Mapping[str, Any]) -> list[str]:
 _HOW_TO_READ = (
     "**IQM**: interquartile mean over seeds (the mean of the middle 50% of runs; rliable). "
     "**[95% CI]**: percentile interval of the stratified bootstrap ({reps} resamples of the "
-    "seeds, fixed seed); none with a single seed.",
+    "seeds, fixed seed). With fewer than 5 seeds in a cell no interval is shown, only "
+    "marked (n=2: no CI): a percentile bootstrap of 2-4 seeds returns [min, max] or a "
+    "zero-width interval, which says nothing about how much the seeds tell.",
     "**Success** and **final distance** are the task's own metrics at the end of training, over "
     "deterministic evaluation episodes; never the shaped return.",
     "**Norm. success / distance**: (entry − sparse) / (dense − sparse) of the mean over seeds: "

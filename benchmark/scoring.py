@@ -46,6 +46,7 @@ from planshape.errors import BadInputError, ResultsError
 
 __all__ = [
     "COLUMNS",
+    "MIN_CI_SEEDS",
     "REFERENCE_ENTRIES",
     "Interval",
     "ResultsError",
@@ -102,6 +103,9 @@ REFERENCE_ENTRIES: tuple[str, str] = (SPARSE, DENSE)
 
 #: Invariance verdicts a row may carry (``not-applicable``: sparse and dense have no potential).
 INVARIANCE_VERDICTS: tuple[str, ...] = ("preserved", "violated", "not-checked", "not-applicable")
+#: the fewest seeds whose bootstrap interval is shown: with 2-4 seeds a percentile bootstrap
+#: returns [min, max] or a zero-width interval, which says nothing about the uncertainty
+MIN_CI_SEEDS = 5
 
 _INT_COLUMNS = ("seed", "step", "budget", "eval_episodes")
 _FLOAT_COLUMNS = (
@@ -868,6 +872,7 @@ def aggregate(
             "tasks": tasks,
             "n_tasks": len(tasks),
             "n_runs": sum(len(groups[(t, algo, entry)]) for t in tasks),
+            "min_seeds": min(len(groups[(t, algo, entry)]) for t in tasks),
         }
         for metric, name in (("success_rate", "success"), ("final_distance", "distance")):
             normalized: dict[str, np.ndarray] = {}

@@ -131,7 +131,32 @@ def test_a_single_seed_shows_no_interval(tmp_path):
     rows = make_run(seed=0, final_success=0.6) + make_run(entry="dense", seed=0)
     render_leaderboard(rows, tmp_path, HEADER, reps=REPS)
     text = (tmp_path / "LEADERBOARD.md").read_text()
-    assert "| `sparse` | 1 | 0.600 | 0.600 |" in text
+    assert "| `sparse` | 1 | 0.600 (n=1: no CI) | 0.600 |" in text
+
+
+@pytest.mark.parametrize(("seeds", "shown"), [(2, False), (4, False), (5, True)])
+def test_intervals_are_shown_from_five_seeds_on(tmp_path, seeds, shown):
+    """A percentile bootstrap of 2 seeds gives [min, max]: not shown as an interval."""
+    rows = []
+    for seed in range(seeds):
+        rows += make_run(seed=seed, final_success=0.2 * seed)
+        rows += make_run(entry="dense", seed=seed, final_success=1.0)
+    render_leaderboard(rows, tmp_path, HEADER, reps=REPS)
+    text = (tmp_path / "LEADERBOARD.md").read_text()
+    line = next(li for li in text.splitlines() if li.startswith("| `sparse` |"))
+    assert (f"(n={seeds}: no CI)" not in line) is shown
+    assert ("[" in line.split("|")[3]) is shown
+
+
+def test_the_across_task_table_names_the_tasks_left_out_of_normalization(tmp_path):
+    rows = make_run(seed=0, final_success=1.0) + make_run(entry="dense", seed=0, final_success=1.0)
+    rows += make_run(entry="plan-based/grid", seed=0, final_success=1.0)
+    push = [{**r, "task": "planshape/Push-v0", "run_id": r["run_id"] + "-push"} for r in rows]
+    render_leaderboard(rows + push, tmp_path, HEADER, reps=REPS)
+    text = (tmp_path / "LEADERBOARD.md").read_text()
+    across = text.split("## Across tasks")[1].split("## planshape/")[0]
+    assert "Not normalized on (sparse = dense)" in across
+    assert "Push-v0, Reach-v0" in across  # sparse and dense tie on both
 
 
 def test_nothing_to_render(tmp_path):
