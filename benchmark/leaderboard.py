@@ -47,6 +47,7 @@ from planshape.scoring import (
     describe_runs,
     json_ready,
     learning_curve,
+    normalized_scores,
     run_curves,
     summarize,
 )
@@ -55,7 +56,7 @@ from planshape.store import write_atomic
 __all__ = ["render_leaderboard", "slug", "summary_table"]
 
 PLOTS_DIR = "plots"
-_PLOT_PREFIXES = ("curves_", "final_distance_")
+_PLOT_PREFIXES = ("curves_", "final_distance_", "aggregate_")
 _DPI = 100
 #: Matplotlib settings for every plot, applied on top of matplotlib's defaults (never the
 #: user's matplotlibrc), so the PNGs are the same on every machine with the pinned matplotlib.
@@ -375,6 +376,8 @@ def _render_markdown(
             ranked = _ranked_aggregate(r for r in overall if r["algo"] == algo)
             lines += ["", f"### {algo}", ""]
             lines += _md_cells_table([_aggregate_cells(r, _CI_LABEL) for r in ranked])
+        for caption, path in plots.get(ACROSS, []):
+            lines += ["", f"![{caption}]({path.relative_to(out_dir).as_posix()})"]
     for task, by_algo in tasks.items():
         lines += ["", f"## {task}"]
         for algo, rows in by_algo.items():
@@ -526,6 +529,11 @@ def _render_html(
             ranked = _ranked_aggregate(r for r in overall if r["algo"] == algo)
             parts.append(f"<h3>{_e(algo)}</h3>")
             parts.append(_html_cells_table([_aggregate_cells(r, _CI_LABEL) for r in ranked]))
+        for caption, path in plots.get(ACROSS, []):
+            parts.append(
+                f'<figure><img alt="{_e(caption)}" src="{_png_data_uri(path)}">'
+                f"<figcaption>{_e(caption)}</figcaption></figure>"
+            )
     for task, by_algo in tasks.items():
         parts.append(f'<h2 id="{_e(slug(task))}">{_e(task)}</h2>')
         for algo, rows_ in by_algo.items():
@@ -643,6 +651,7 @@ def _plot_final_distance(
 def _render_plots(
     rows: Sequence[Mapping[str, Any]],
     summary: Sequence[Mapping[str, Any]],
+    overall: Sequence[Mapping[str, Any]],
     plots_dir: Path,
     reps: int,
     seed: int,
@@ -671,7 +680,43 @@ def _render_plots(
                 (f"{task}: learning curves", curves_path),
                 (f"{task}: final distance per entry", bars_path),
             ]
+        if len(tasks) > 1:
+            written[ACROSS] = _across_task_figures(rows, overall, plots_dir, seed)
     return written
+
+
+#: the key of the across-task figures among the plots of each task
+ACROSS = ""
+
+
+def _across_task_figures(
+    rows: Sequence[Mapping[str, Any]],
+    overall: Sequence[Mapping[str, Any]],
+    plots_dir: Path,
+    seed: int,
+) -> list[tuple[str, Path]]:
+    """rliable's aggregate figures (:mod:`planshape.figures`), pooled over tasks."""
+    from planshape import figures
+
+    made = [
+        (
+            "interval estimates: IQM, mean and optimality gap of the normalized success",
+            figures.plot_interval_estimates(overall, plots_dir / "aggregate_intervals.png"),
+        ),
+        (
+            "performance profiles: fraction of runs above each normalized success",
+            figures.plot_performance_profiles(
+                normalized_scores(rows), plots_dir / "aggregate_profiles.png", seed=seed
+            ),
+        ),
+        (
+            "probability of improvement over sparse and over dense",
+            figures.plot_probability_of_improvement(
+                overall, plots_dir / "aggregate_improvement.png"
+            ),
+        ),
+    ]
+    return [(caption, path) for caption, path in made if path is not None]
 
 
 # --------------------------------------------------------------------------------------------
@@ -715,7 +760,7 @@ def render_leaderboard(
     out = Path(out_dir)
     plots_dir = out / PLOTS_DIR
     plots_dir.mkdir(parents=True, exist_ok=True)
-    plots = _render_plots(rows, summary, plots_dir, reps, seed)
+    plots = _render_plots(rows, summary, overall, plots_dir, reps, seed)
     pngs = {path for task_plots in plots.values() for _, path in task_plots}
     for stale in sorted(plots_dir.glob("*.png")):
         if stale.name.startswith(_PLOT_PREFIXES) and stale not in pngs:

@@ -60,6 +60,8 @@ __all__ = [
     "load_rows",
     "mean",
     "normalized_score",
+    "normalized_scores",
+    "optimality_gap",
     "percentile_interval",
     "probability_of_improvement",
     "probability_of_improvement_ci",
@@ -321,6 +323,44 @@ def iqm(x: Scores, axis: int | None = None) -> Any:
         return np.full(np.delete(a.shape, axis), np.nan)
     out = np.asarray(scipy.stats.trim_mean(a, 0.25, axis=axis), dtype=float)
     return np.where(np.isnan(a).any(axis=axis), np.nan, out)
+
+
+def optimality_gap(x: Scores, axis: int | None = None, threshold: float = 1.0) -> Any:
+    """How far runs fall short of ``threshold`` on average: mean of max(0, threshold − score)
+    (rliable's ``aggregate_optimality_gap``; with normalized scores, 1 = dense's level).
+
+    Example:
+        >>> float(optimality_gap({"reach": [1.2, 0.5], "push": [0.0]}))
+        0.5
+    """
+    if isinstance(x, Mapping):
+        x = _flat(x)
+    values = np.asarray(x, dtype=float)
+    if values.size == 0:
+        return math.nan
+    return np.mean(np.maximum(threshold - values, 0.0), axis=axis)
+
+
+def normalized_scores(
+    rows: Iterable[Row], metric: str = "success_rate"
+) -> dict[tuple[str, str], dict[str, np.ndarray]]:
+    """(algo, entry) -> task -> each run's final ``metric`` normalized with its task's sparse
+    and dense means (:func:`normalized_score`); tasks where those tie are left out. What
+    :func:`aggregate` pools, for figures such as performance profiles.
+
+    Example:
+        >>> normalized_scores([])
+        {}
+    """
+    runs, _ = _group_runs(rows)
+    groups = _groups(runs)
+    out: dict[tuple[str, str], dict[str, np.ndarray]] = {}
+    for task, algo, entry in sorted(groups):
+        values = [r.final[metric] for r in groups[(task, algo, entry)]]
+        scores = normalized_score(values, *_references(groups, task, algo, metric))
+        if not np.isnan(scores).all():
+            out.setdefault((algo, entry), {})[task] = np.asarray(scores, dtype=float)
+    return out
 
 
 def mean(x: Scores, axis: int | None = None) -> Any:
@@ -849,8 +889,10 @@ def aggregate(
     Columns: ``entry``, ``algo``, ``tasks`` (every task the entry ran on), ``n_tasks``,
     ``n_runs``; ``normalized_success_iqm`` and ``normalized_success_mean`` (IQM/mean over the
     pooled runs with stratified-bootstrap intervals, ``*_low``/``*_high``),
+    ``normalized_success_gap`` (the optimality gap below dense's level, :func:`optimality_gap`),
     ``normalized_success_tasks_excluded``; the same for ``normalized_distance``;
-    ``p_improve`` and ``p_improve_distance`` (over the tasks that have a sparse entry, with the
+    ``p_improve_dense`` (P(entry's success > dense's)), ``p_improve`` and
+    ``p_improve_distance`` (over the tasks that have a sparse entry, with the
     stratified independent bootstrap); ``curve_area_mean``; ``invariance`` (combined as in
     :func:`summarize`).
 
@@ -891,6 +933,11 @@ def aggregate(
             row |= _interval_columns(
                 f"{column}_mean", stratified_bootstrap_ci(normalized, mean, **ci), normalized
             )
+            row |= _interval_columns(
+                f"{column}_gap",
+                stratified_bootstrap_ci(normalized, optimality_gap, **ci),
+                normalized,
+            )
             row[f"{column}_tasks_excluded"] = excluded
         with_sparse = [t for t in tasks if (t, algo, SPARSE) in groups]
         for metric, column, sign in (
@@ -902,6 +949,12 @@ def aggregate(
                 for e in (entry, SPARSE)
             )
             row |= _interval_columns(column, probability_of_improvement_ci(x, y, **ci), x, y)
+        with_dense = [t for t in tasks if (t, algo, DENSE) in groups]
+        x, y = (
+            {t: [r.final["success_rate"] for r in groups[(t, algo, e)]] for t in with_dense}
+            for e in (entry, DENSE)
+        )
+        row |= _interval_columns("p_improve_dense", probability_of_improvement_ci(x, y, **ci), x, y)
         areas = {
             t: [curve_area(r.steps, r.success, r.final["budget"]) for r in groups[(t, algo, entry)]]
             for t in tasks

@@ -48,6 +48,8 @@ def test_writes_every_file(rendered):
     for task in ("planshape/Reach-v0", "planshape/Push-v0"):
         assert f"plots/curves_{slug(task)}.png" in names
         assert f"plots/final_distance_{slug(task)}.png" in names
+    for figure in ("intervals", "profiles", "improvement"):  # rliable's, across tasks
+        assert f"plots/aggregate_{figure}.png" in names
     for path in paths:
         assert path.is_file() and path.stat().st_size > 0
     for path in (p for p in paths if p.suffix == ".png"):
@@ -61,7 +63,7 @@ def test_html_works_offline(rendered):
     page = (out / "index.html").read_text()
     assert not re.search(r"https?://", page)
     assert not re.search(r"<link\b|<script[^>]*\bsrc=|@import", page)
-    assert page.count("data:image/png;base64,") == 4
+    assert page.count("data:image/png;base64,") == 4 + 3  # per task 2, across tasks 3
     assert '<table class="sortable">' in page and "addEventListener" in page
     assert "my_mod:&lt;Pot&gt;|x/grid" in page and "<Pot>" not in page
     assert f"({REPS} resamples" in page and "{reps}" not in page

@@ -29,6 +29,7 @@ MODULES = [
     "planshape.testing",
     "planshape.invariance.probes",
     "planshape.planning.prepass",
+    "planshape.figures",
 ]
 
 
