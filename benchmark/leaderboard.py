@@ -578,34 +578,65 @@ def _plot_curves(
     reps: int,
     seed: int,
 ) -> None:
+    """Small multiples: a row per algorithm, a panel per potential family (its models in
+    line styles), with sparse and dense drawn thin in every panel for reference."""
     from matplotlib.figure import Figure
+    from matplotlib.ticker import MaxNLocator
+
+    from planshape.figures import style
 
     algos = sorted(runs_by_algo)
-    rows_of_legend = math.ceil(len({e for by in runs_by_algo.values() for e in by}) / 4)
-    height = 3.2 + 0.2 * rows_of_legend
-    fig = Figure(figsize=(max(6.0, 4.6 * len(algos)), height), layout="constrained")
-    axes = fig.subplots(1, len(algos), sharey=True, squeeze=False)[0]
-    for ax, algo in zip(axes, algos, strict=True):
-        for entry in _entry_order(runs_by_algo[algo]):
-            curves = runs_by_algo[algo][entry]
-            grid, avg, low, high = learning_curve(curves, reps=reps, seed=seed)
-            color = colors[entry]
-            ax.plot(grid, avg, color=color, linewidth=1.4, label=entry)
-            ax.fill_between(grid, low, high, color=color, alpha=0.15, linewidth=0)
-        ax.set_title(f"{algo} — budget {budgets[algo]:,} steps")
-        ax.set_xlabel("environment steps")
-        ax.set_ylim(-0.03, 1.03)
-        ax.set_xlim(left=0)
-    axes[0].set_ylabel("success rate")
-    seen: dict[str, Any] = {}
-    for ax in axes:
-        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
-            seen.setdefault(label, handle)
-    order = _entry_order(seen)
-    fig.legend(
-        [seen[e] for e in order], order, loc="outside lower center", ncols=min(len(order), 4)
+    families = sorted(
+        {e.split("/")[0] for by in runs_by_algo.values() for e in by if e not in (SPARSE, DENSE)}
+    ) or ["references"]
+    columns = min(len(families), 4)
+    rows_per_algo = math.ceil(len(families) / columns)
+    fig = Figure(
+        figsize=(3.1 * columns + 0.6, 2.3 * rows_per_algo * len(algos) + 0.9),
+        layout="constrained",
     )
-    fig.suptitle(f"{task}: success rate during training\n(mean over seeds, 95% bootstrap CI)")
+    grid = fig.subplots(rows_per_algo * len(algos), columns, squeeze=False, sharex="row")
+    for a, algo in enumerate(algos):
+        curves_of = runs_by_algo[algo]
+        for f, family in enumerate(families):
+            ax = grid[a * rows_per_algo + f // columns][f % columns]
+            ax.xaxis.set_major_locator(MaxNLocator(4))
+            if family != "references" and not any(
+                e.split("/")[0] == family for e in curves_of if e not in (SPARSE, DENSE)
+            ):
+                ax.set_visible(False)  # this algorithm did not run that family
+                continue
+            for entry in _entry_order(curves_of):
+                reference = entry in (SPARSE, DENSE)
+                if not reference and entry.split("/")[0] != family:
+                    continue
+                grid_x, avg, low, high = learning_curve(curves_of[entry], reps=reps, seed=seed)
+                look = style(entry)
+                ax.plot(
+                    grid_x,
+                    avg,
+                    color=look["color"],
+                    linestyle=look["linestyle"],
+                    linewidth=0.9 if reference else 1.5,
+                    label=entry,
+                )
+                if not reference:
+                    ax.fill_between(grid_x, low, high, color=look["color"], alpha=0.15, lw=0)
+            ax.set_title(f"{algo}: {family}", fontsize=8)
+            ax.set_ylim(-0.03, 1.03)
+            ax.set_xlim(0, budgets[algo])
+            ax.tick_params(labelsize=7)
+            ax.legend(fontsize=6, loc="upper left")
+        for f in range(len(families), rows_per_algo * columns):
+            grid[a * rows_per_algo + f // columns][f % columns].set_visible(False)
+    for ax in grid[:, 0]:
+        ax.set_ylabel("success rate", fontsize=8)
+    for ax in grid[-1]:
+        ax.set_xlabel("environment steps", fontsize=8)
+    fig.suptitle(
+        f"{task}: success rate during training (mean over seeds, 95% bootstrap CI; "
+        "sparse black, dense grey)"
+    )
     _save(fig, path)
 
 
@@ -614,8 +645,12 @@ def _plot_final_distance(
     rows_by_algo: Mapping[str, list[Mapping[str, Any]]],
     colors: Mapping[str, str],
     path: Path,
+    seeds: Mapping[tuple[str, str], list[float]] | None = None,
 ) -> None:
+    """Bars of the mean final distance per entry with its CI, and every seed as a point."""
     from matplotlib.figure import Figure
+
+    from planshape.figures import style
 
     algos = sorted(rows_by_algo)
     width = max(len(rows) for rows in rows_by_algo.values())
@@ -634,16 +669,30 @@ def _plot_final_distance(
             x[shown],
             height[shown],
             yerr=errors[:, shown],
-            color=[colors[e] for e, s in zip(entries, shown, strict=True) if s],
+            color=[style(e)["color"] for e, s in zip(entries, shown, strict=True) if s],
+            alpha=0.55,
             capsize=3,
             error_kw={"linewidth": 1},
         )
+        for xi, entry in zip(x, entries, strict=True):
+            values = (seeds or {}).get((algo, entry), [])
+            if values:
+                jitter = np.linspace(-0.18, 0.18, len(values)) if len(values) > 1 else [0.0]
+                ax.plot(
+                    xi + np.asarray(jitter),
+                    values,
+                    linestyle="none",
+                    marker=style(entry)["marker"],
+                    markersize=3.5,
+                    color="#222222",
+                )
         ax.set_xticks(x, entries, rotation=35, ha="right", fontsize=7)
         ax.set_title(algo)
         ax.grid(axis="x", visible=False)
     axes[0].set_ylabel("final distance to goal (m)")
     fig.suptitle(
-        f"{task}: final distance to the goal\n(lower is better; mean over seeds, 95% bootstrap CI)"
+        f"{task}: final distance to the goal\n(lower is better; bars: mean over seeds with 95% "
+        "bootstrap CI; points: each seed)"
     )
     _save(fig, path)
 
@@ -666,6 +715,10 @@ def _render_plots(
         runs.setdefault(task, {}).setdefault(algo, {}).setdefault(entry, []).append(curve)
     tasks = _by_task_and_algo(summary)
     colors = _colors(r["entry"] for r in summary)
+    seeds_of: dict[str, dict[tuple[str, str], list[float]]] = {}
+    for r in sorted((r for r in rows if r["final"]), key=lambda r: (r["seed"], r["run_id"])):
+        by_entry = seeds_of.setdefault(r["task"], {})
+        by_entry.setdefault((r["algo"], r["entry"]), []).append(float(r["final_distance"]))
     written: dict[str, list[tuple[str, Path]]] = {}
     with matplotlib.rc_context():
         matplotlib.rcdefaults()
@@ -675,7 +728,7 @@ def _render_plots(
             curves_path = plots_dir / f"curves_{slug(task)}.png"
             _plot_curves(task, runs[task], budgets, colors, curves_path, reps, seed)
             bars_path = plots_dir / f"final_distance_{slug(task)}.png"
-            _plot_final_distance(task, by_algo, colors, bars_path)
+            _plot_final_distance(task, by_algo, colors, bars_path, seeds_of.get(task, {}))
             written[task] = [
                 (f"{task}: learning curves", curves_path),
                 (f"{task}: final distance per entry", bars_path),
