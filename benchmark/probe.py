@@ -96,6 +96,33 @@ def probe(key: RunKey, chunks: int = 8, eval_episodes: int = 10) -> list[dict[st
     return rows
 
 
+def _checked_key(args: argparse.Namespace) -> RunKey:
+    """The run of the command line, every part checked before anything trains (exit 2)."""
+    from planshape.learners import learner
+    from planshape.potentials import potential_ids
+    from planshape.registration import task_spec
+    from planshape.suite.session import resolve_tasks
+
+    (task,) = resolve_tasks(args.task) or [args.task]
+    learner(args.algo)  # an unknown learner is an UnknownIdError naming the known ones
+    if args.entry not in ("sparse", "dense"):
+        potential, _, model = args.entry.rpartition("/")
+        models = list(task_spec(task).models)
+        if not potential or model not in models:
+            raise BadInputError(
+                f"entry {args.entry!r}: write sparse, dense or POTENTIAL/MODEL with a model of "
+                f"{task} ({', '.join(models)})"
+            )
+        if potential not in potential_ids() and ":" not in potential:
+            raise BadInputError(
+                f"entry {args.entry!r}: unknown potential {potential!r}; known: "
+                + ", ".join(potential_ids())
+            )
+    if args.seed < 0 or args.budget < 1 or args.episodes < 1:
+        raise BadInputError("--seed must be ≥ 0, --budget and --episodes ≥ 1")
+    return RunKey(task, args.entry, args.algo, args.seed, args.budget)
+
+
 def _mean(values: Any) -> float | None:
     numbers = [float(v) for v in values if v is not None]
     return float(np.mean(numbers)) if numbers else None
@@ -149,9 +176,9 @@ def format_rows(rows: list[dict[str, Any]]) -> str:
 
 @subcommand("probe", "train one benchmark run and print the learner's statistics as it learns")
 def _probe_command(parser: argparse.ArgumentParser) -> Handler:
-    parser.add_argument("task", help="a task id, e.g. planshape/Push-v0")
+    parser.add_argument("task", help="a task id or short name, as bench --tasks: push, Push-v1")
     parser.add_argument("entry", help="sparse, dense or POTENTIAL/MODEL")
-    parser.add_argument("--algo", default="PPO", help="PPO, SAC or SAC-default (default: PPO)")
+    parser.add_argument("--algo", default="PPO", help="a learner id: PPO, SAC, SBX-SAC, ...")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--budget", type=int, default=81_920, help="environment steps")
     parser.add_argument("--chunks", type=int, default=8, help="checkpoints (default: 8)")
@@ -159,7 +186,7 @@ def _probe_command(parser: argparse.ArgumentParser) -> Handler:
     parser.add_argument("--json", action="store_true", help="print JSON rows")
 
     def run(args: argparse.Namespace) -> int:
-        key = RunKey(args.task, args.entry, args.algo, args.seed, args.budget)
+        key = _checked_key(args)
         rows = probe(key, args.chunks, args.episodes)
         print(json.dumps(rows) if args.json else format_rows(rows))
         return 0

@@ -51,3 +51,24 @@ def test_unshaped_entries_have_no_progress(capsys):
 def test_chunks_must_fit_the_budget():
     with pytest.raises(BadInputError, match="--chunks must be between 1 and the budget"):
         probe(RunKey("planshape/Reach-v0", "dense", "PPO", 0, 10), chunks=20)
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (
+            ["push", "nope"],
+            "write sparse, dense or POTENTIAL/MODEL with a model of planshape/Push-v1",
+        ),
+        (["reach", "foo/grid"], "unknown potential 'foo'"),
+        (["rech", "dense"], "unknown task 'rech'"),
+        (["reach", "dense", "--algo", "XYZ"], "unknown algorithm 'XYZ'"),
+        (["reach", "dense", "--budget", "0"], "--budget and --episodes ≥ 1"),
+    ],
+)
+def test_bad_probe_input_exits_2_before_training(capsys, argv, message):
+    from planshape.cli import main
+
+    assert main(["probe", *argv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
