@@ -67,13 +67,15 @@ def bench(request: pytest.FixtureRequest) -> BenchSession:
 
 
 class ProgressLines:
-    """After each run: how many are done, the time spent and an estimate of the time left."""
+    """After each run: how many are done, the time spent and an estimate of the time left,
+    from the runs trained in this session (a run found in the store takes no time)."""
 
     def __init__(self, config: pytest.Config):
         self.config = config
         self.started = time.monotonic()
         self.total = 0
         self.done = 0
+        self.skipped = 0
 
     def pytest_sessionstart(self, session: pytest.Session) -> None:
         self.config.stash[BenchSession.KEY].prepare()
@@ -92,9 +94,12 @@ class ProgressLines:
             return
         self.done += 1
         elapsed = time.monotonic() - self.started
-        left = elapsed / self.done * max(self.total - self.done, 0)
+        if report.skipped:  # already stored: takes no time, so it says nothing about the rest
+            self.skipped += 1
+        trained = self.done - self.skipped
+        left = elapsed / trained * max(self.total - self.done, 0) if trained else 0.0
         name = report.nodeid.split("[", 1)[-1].rstrip("]")
-        outcome = "done" if report.passed else report.outcome
+        outcome = "done" if report.passed else "stored" if report.skipped else report.outcome
         reporter = self.config.pluginmanager.get_plugin("terminalreporter")
         if reporter is not None:
             reporter.write_line(
