@@ -196,6 +196,7 @@ from planshape import bench as _bench  # noqa: E402,F401
 from planshape import catalog as _catalog  # noqa: E402,F401
 from planshape import probe as _probe  # noqa: E402,F401
 from planshape import results as _results  # noqa: E402,F401
+from planshape import videos as _videos  # noqa: E402,F401
 from planshape.invariance import command as _invariance_command  # noqa: E402,F401
 
 if __name__ == "__main__":  # python -m planshape.cli: use the module that others register into

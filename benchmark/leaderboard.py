@@ -345,6 +345,7 @@ def _render_markdown(
     info: Mapping[str, Any],
     header: Mapping[str, Any],
     plots: Mapping[str, list[tuple[str, Path]]],
+    videos: Mapping[str, list[tuple[str, Path]]],
     out_dir: Path,
     reps: int,
 ) -> str:
@@ -383,7 +384,7 @@ def _render_markdown(
         for algo, rows in by_algo.items():
             lines += ["", f"### {algo} — budget {rows[0]['budget']:,} steps", ""]
             lines += _md_cells_table([_task_cells(r, _CI_LABEL) for r in rows])
-        for caption, path in plots.get(task, []):
+        for caption, path in [*plots.get(task, []), *videos.get(task, [])]:
             lines += ["", f"![{caption}]({path.relative_to(out_dir).as_posix()})"]
     hyper = info["hyperparameters"]
     if hyper:
@@ -476,7 +477,20 @@ def _html_cells_table(cells: list[list[Cell]]) -> str:
 
 
 def _png_data_uri(path: Path) -> str:
-    return "data:image/png;base64," + base64.b64encode(path.read_bytes()).decode("ascii")
+    kind = "gif" if path.suffix == ".gif" else "png"
+    return f"data:image/{kind};base64," + base64.b64encode(path.read_bytes()).decode("ascii")
+
+
+def _videos(out_dir: Path, tasks: Iterable[str]) -> dict[str, list[tuple[str, Path]]]:
+    """The policy animations in ``<out>/videos/`` (``planshape render``), by task."""
+    folder = out_dir / "videos"
+    found: dict[str, list[tuple[str, Path]]] = {}
+    for task in tasks:
+        for path in sorted(folder.glob(f"{slug(task)}__*.gif")) if folder.is_dir() else ():
+            _, entry, algo, seed = path.stem.split("__")
+            caption = f"{task}: final policy of {entry.replace('-', '/', 1)} ({algo}, {seed})"
+            found.setdefault(task, []).append((caption, path))
+    return found
 
 
 def _render_html(
@@ -485,6 +499,7 @@ def _render_html(
     info: Mapping[str, Any],
     header: Mapping[str, Any],
     plots: Mapping[str, list[tuple[str, Path]]],
+    videos: Mapping[str, list[tuple[str, Path]]],
     reps: int,
 ) -> str:
     parts = [
@@ -539,7 +554,7 @@ def _render_html(
         for algo, rows_ in by_algo.items():
             parts.append(f"<h3>{_e(algo)} — budget {rows_[0]['budget']:,} steps</h3>")
             parts.append(_html_cells_table([_task_cells(r, _CI_LABEL) for r in rows_]))
-        for caption, path in plots.get(task, []):
+        for caption, path in [*plots.get(task, []), *videos.get(task, [])]:
             parts.append(
                 f'<figure><img alt="{_e(caption)}" src="{_png_data_uri(path)}">'
                 f"<figcaption>{_e(caption)}</figcaption></figure>"
@@ -819,8 +834,9 @@ def render_leaderboard(
         if stale.name.startswith(_PLOT_PREFIXES) and stale not in pngs:
             stale.unlink()
 
-    markdown = _render_markdown(summary, overall, info, header, plots, out, reps)
-    page = _render_html(summary, overall, info, header, plots, reps)
+    videos = _videos(out, {r["task"] for r in summary})
+    markdown = _render_markdown(summary, overall, info, header, plots, videos, out, reps)
+    page = _render_html(summary, overall, info, header, plots, videos, reps)
     machine = {
         "header": {**header, "caveats": _caveats(header, info)},
         "provenance": {k: v for k, v in info.items() if k != "caveats"},

@@ -254,10 +254,14 @@ def make_training_env(
     )
 
 
-def make_evaluation_env(key: RunKey, hyperparameters: dict[str, Any]) -> gymnasium.Env:
+def make_evaluation_env(
+    key: RunKey, hyperparameters: dict[str, Any], render_mode: str | None = None
+) -> gymnasium.Env:
     """The task with its own sparse reward, seen by the learner as in training; a
     distribution's held-out instances."""
     held_out = {"instances": "eval"} if task_spec(key.task).instances else {}
+    if render_mode is not None:
+        held_out["render_mode"] = render_mode
     env = gymnasium.make(key.task, **held_out)
     return learner_view(env) if hyperparameters.get("rescale_observations") else env
 
@@ -319,6 +323,12 @@ def evaluate(
 
 def execute(spec: RunSpec) -> list[dict[str, Any]]:
     """Train and evaluate one run; return its tidy rows (one per evaluation point)."""
+    return train(spec)[1]
+
+
+def train(spec: RunSpec) -> tuple[Any, list[dict[str, Any]]]:
+    """Train and evaluate one run: the trained learner and the run's rows (:func:`execute`,
+    which stores the rows; :mod:`planshape.videos` renders the learner's policy)."""
     import torch
     from stable_baselines3.common.callbacks import BaseCallback
 
@@ -386,7 +396,7 @@ def execute(spec: RunSpec) -> list[dict[str, Any]]:
         "gamma": gamma,
     }
     last = len(points) - 1
-    return [
+    return model, [
         {**provenance, "step": step, "final": i == last, **metrics}
         for i, (step, metrics) in enumerate(points)
     ]

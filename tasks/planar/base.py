@@ -108,6 +108,8 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         self.randomize_start = bool(randomize_start)
         self.randomize_goal = bool(randomize_goal)
         self.render_mode = render_mode
+        #: points drawn on every rendered frame (planshape.videos draws the plan's subgoals)
+        self.render_marks: list[tuple[float, float]] = []
         chosen = planar_version(version)
         self.version = version
         self.geometry = geometry = geometry or chosen.geometry
@@ -279,7 +281,8 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
             return None
         q = self._data.qpos
         box = (float(q[2]), float(q[3])) if self.has_box else None
-        return draw(self.geometry, (float(q[0]), float(q[1])), self._goal, self.walls, box)
+        ee = (float(q[0]), float(q[1]))
+        return draw(self.geometry, ee, self._goal, self.walls, box, self.render_marks)
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None

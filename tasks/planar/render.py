@@ -22,6 +22,7 @@ WALL = (90, 90, 90)
 GOAL = (60, 170, 80)
 BOX = (200, 120, 40)
 END_EFFECTOR = (40, 90, 200)
+MARK = (200, 60, 160)
 
 
 class TopDownCanvas:
@@ -61,12 +62,16 @@ def draw(
     goal: Sequence[float],
     walls: Sequence[Rect] = (),
     box: Sequence[float] | None = None,
+    marks: Sequence[Sequence[float]] = (),
 ) -> np.ndarray:
-    """The picture: walls, the success region around the goal, the box and the end effector."""
+    """The picture: walls, the success region around the goal, ``marks`` (e.g. where the
+    plan's subgoals put the end effector and the box), the box and the end effector."""
     canvas = TopDownCanvas(geometry)
     for wall in walls:
         canvas.rect(wall, WALL)
     canvas.disc(goal, geometry.success_threshold, GOAL, ring=True)
+    for mark in marks:
+        canvas.disc(mark, 0.008, MARK)
     if box is not None and geometry.object_radius is not None:
         canvas.disc(box, geometry.object_radius, BOX)
     elif box is not None:

@@ -174,3 +174,19 @@ def test_summary_table(rows):
     reach_ppo = [line for line in lines if line.startswith("planshape/Reach-v0  PPO")]
     assert "plan-based/multi" in reach_ppo[0] and "sparse" in reach_ppo[-1]
     assert summary_table([]) == "no finished runs"
+
+
+def test_policy_videos_in_the_results_folder_appear_beside_their_task(tmp_path):
+    import imageio.v3 as iio
+    import numpy as np
+
+    rows = make_run(seed=0) + make_run(entry="dense", seed=0)
+    videos = tmp_path / "videos"
+    videos.mkdir()
+    frames = np.zeros((2, 8, 8, 3), np.uint8)
+    iio.imwrite(videos / "planshape-Reach-v0__dense__PPO__seed0.gif", frames, duration=80)
+    render_leaderboard(rows, tmp_path, HEADER, reps=REPS)
+    board = (tmp_path / "LEADERBOARD.md").read_text()
+    assert "![planshape/Reach-v0: final policy of dense (PPO, seed0)]" in board
+    assert "videos/planshape-Reach-v0__dense__PPO__seed0.gif" in board
+    assert "data:image/gif;base64," in (tmp_path / "index.html").read_text()

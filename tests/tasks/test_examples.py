@@ -30,6 +30,7 @@ MODULES = [
     "planshape.invariance.probes",
     "planshape.planning.prepass",
     "planshape.figures",
+    "planshape.videos",
 ]
 
 
