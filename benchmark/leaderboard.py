@@ -481,6 +481,14 @@ def _png_data_uri(path: Path) -> str:
     return f"data:image/{kind};base64," + base64.b64encode(path.read_bytes()).decode("ascii")
 
 
+def _html_figure(caption: str, path: Path) -> str:
+    """An image inlined as a data URI, with its caption."""
+    return (
+        f'<figure><img alt="{_e(caption)}" src="{_png_data_uri(path)}">'
+        f"<figcaption>{_e(caption)}</figcaption></figure>"
+    )
+
+
 def _videos(out_dir: Path, tasks: Iterable[str]) -> dict[str, list[tuple[str, Path]]]:
     """The policy animations in ``<out>/videos/`` (``planshape render``), by task."""
     folder = out_dir / "videos"
@@ -544,21 +552,14 @@ def _render_html(
             ranked = _ranked_aggregate(r for r in overall if r["algo"] == algo)
             parts.append(f"<h3>{_e(algo)}</h3>")
             parts.append(_html_cells_table([_aggregate_cells(r, _CI_LABEL) for r in ranked]))
-        for caption, path in plots.get(ACROSS, []):
-            parts.append(
-                f'<figure><img alt="{_e(caption)}" src="{_png_data_uri(path)}">'
-                f"<figcaption>{_e(caption)}</figcaption></figure>"
-            )
+        parts += [_html_figure(caption, path) for caption, path in plots.get(ACROSS, [])]
     for task, by_algo in tasks.items():
         parts.append(f'<h2 id="{_e(slug(task))}">{_e(task)}</h2>')
         for algo, rows_ in by_algo.items():
             parts.append(f"<h3>{_e(algo)} — budget {rows_[0]['budget']:,} steps</h3>")
             parts.append(_html_cells_table([_task_cells(r, _CI_LABEL) for r in rows_]))
-        for caption, path in [*plots.get(task, []), *videos.get(task, [])]:
-            parts.append(
-                f'<figure><img alt="{_e(caption)}" src="{_png_data_uri(path)}">'
-                f"<figcaption>{_e(caption)}</figcaption></figure>"
-            )
+        figures = [*plots.get(task, []), *videos.get(task, [])]
+        parts += [_html_figure(caption, path) for caption, path in figures]
     parts.append(f"<script>{_JS}</script>")
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"
