@@ -136,8 +136,8 @@ class AugmentedMDP:
                 raise
             s, p = int(self.state[x]), int(self.plan_progress[x])
             raise PotentialValueError(
-                f"potential {potential.name!r} failed at state {s} (observation "
-                f"{np.round(observations[s], 4).tolist()}, progress {p}, t {t}): {exc}"
+                f"{exc} (at state {s} of the toy: observation "
+                f"{np.round(observations[s], 4).tolist()}, progress {p}, t {t})"
             ) from None
         except Exception as exc:  # a submitted potential's own failure is bad input
             s, p = int(self.state[x]), int(self.plan_progress[x])
