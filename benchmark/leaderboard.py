@@ -202,7 +202,7 @@ def _aggregate_cells(row: Mapping[str, Any], ci_label: str) -> list[Cell]:
         (f"P(improve over sparse) {ci_label}", _ci(row, "p_improve", 2), value("p_improve")),
         ("Curve area", _num(row["curve_area_mean"]), value("curve_area_mean")),
         (
-            "Not normalized on (sparse = dense)",
+            "Not normalized on (dense no better than sparse)",
             ", ".join(_short_task(t) for t in row.get("normalized_success_tasks_excluded", ()))
             or "none",
             None,
@@ -307,7 +307,7 @@ _HOW_TO_READ = (
     "deterministic evaluation episodes; never the shaped return.",
     "**Norm. success / distance**: (entry − sparse) / (dense − sparse) of the mean over seeds: "
     "0 = as good as the sparse reward, 1 = as good as the hand-crafted dense reward, above 1 "
-    "better; n/a where sparse and dense tie.",
+    "better; n/a where dense is no better than sparse (the scale would invert).",
     "**P(improve over sparse)**: probability that a run of the entry ends with a higher success "
     "rate than a run of the sparse reward (Mann-Whitney; ties count half; 0.5 = no difference).",
     "**Curve area**: area under success rate over training steps divided by the budget (1 = "

@@ -774,12 +774,20 @@ def _groups(runs: list[_Run]) -> dict[tuple[str, str, str], list[_Run]]:
 def _references(
     groups: Mapping[tuple[str, str, str], list[_Run]], task: str, algo: str, metric: str
 ) -> tuple[float, float]:
-    """Mean final ``metric`` of the sparse and dense entries of (task, algo); NaN if absent."""
+    """Mean final ``metric`` of the sparse and dense entries of (task, algo); NaN if absent.
+
+    Both are NaN when dense is no better than sparse (success not higher, distance not
+    lower): the scale (entry − sparse) / (dense − sparse) would then invert or divide by
+    zero, e.g. −4 for an entry that solves a task where sparse solves more than dense."""
     out = []
     for entry in REFERENCE_ENTRIES:
         runs = groups.get((task, algo, entry), [])
         out.append(mean([r.final[metric] for r in runs]))
-    return out[0], out[1]
+    sparse, dense = out
+    better = dense > sparse if metric == "success_rate" else dense < sparse
+    if not better and not (math.isnan(sparse) or math.isnan(dense)):
+        return math.nan, math.nan
+    return sparse, dense
 
 
 def summarize(
@@ -1068,8 +1076,8 @@ def describe_runs(rows: Iterable[Row], profile: str | None = None) -> dict[str, 
             sparse, dense = _references(groups, task, algo, metric)
             if np.isnan(normalized_score(sparse, sparse, dense)):
                 caveats.append(
-                    f"{task} / {algo}: sparse and dense tie on mean final {label} "
-                    f"({sparse:.3g}), so normalized {label} is n/a"
+                    f"{task} / {algo}: dense is no better than sparse on mean final {label}, "
+                    f"so normalized {label} is n/a there"
                 )
     violated = sorted(
         {

@@ -350,13 +350,29 @@ def test_summarize_when_references_tie_or_are_missing():
     sac = _row(summary, "planshape/Reach-v0", "plan-based/grid", "SAC")
     assert math.isnan(sac["p_improve"]) and math.isnan(sac["normalized_distance"])
     caveats = " ".join(describe_runs(rows)["caveats"])
-    assert "tie on mean final success" in caveats
+    assert "dense is no better than sparse on mean final success" in caveats
     assert "SAC: no sparse or dense entry" in caveats
     overall = {(r["entry"], r["algo"]): r for r in aggregate(rows)}
     assert overall[("plan-based/grid", "PPO")]["normalized_success_tasks_excluded"] == [
         "planshape/Reach-v0"
     ]
     assert math.isnan(overall[("plan-based/grid", "PPO")]["normalized_success_iqm"])
+
+
+def test_normalization_is_undefined_where_dense_is_worse_than_sparse():
+    """Sparse 1/3 and dense 0/3 (maze-reach, where dense is trapped by the wall): an entry
+    that solves it would score (1 − 1/3)/(0 − 1/3) = −2 on an inverted scale; n/a instead."""
+    rows = []
+    for seed in range(3):
+        rows += make_run(entry="sparse", seed=seed, final_success=float(seed == 0))
+        rows += make_run(entry="dense", seed=seed, final_success=0.0)
+        rows += make_run(entry="plan-based/grid", seed=seed, final_success=1.0)
+    shaped = _row(summarize(rows), "planshape/Reach-v0", "plan-based/grid")
+    assert math.isnan(shaped["normalized_success"])
+    overall = {(r["entry"], r["algo"]): r for r in aggregate(rows)}
+    assert overall[("plan-based/grid", "PPO")]["normalized_success_tasks_excluded"] == [
+        "planshape/Reach-v0"
+    ]
 
 
 def test_a_single_seed_gets_no_interval():
