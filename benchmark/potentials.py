@@ -259,7 +259,8 @@ class Potential(ABC):
         cannot use: reading ``ctx.t`` undeclared is an error (the invariance checker would
         otherwise check it as if φ(x, 0) held at every t)."""
         obs, t = ctx.obs, ctx.t
-        ctx.obs = read_only(obs)
+        if type(obs) is not np.ndarray or obs.flags.writeable:  # planar observations are
+            ctx.obs = read_only(obs)  # read-only already: the per-step path skips the view
         if not self.time_dependent:
             ctx.t = UNDECLARED_TIME
         try:
@@ -279,6 +280,10 @@ class Potential(ABC):
             ) from None
         finally:
             ctx.obs, ctx.t = obs, t
+        if type(raw) is float:  # the common case, checked in one step
+            value = self.scale * raw
+            if value - value == 0.0:  # finite (inf - inf and nan - nan are nan)
+                return value
         try:
             if isinstance(raw, str | bytes):
                 raise TypeError

@@ -239,7 +239,11 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         if self._instances:
             q = [*q, self._gx, self._gy]
         clipped = [min(max(a, a_lo), a_hi) for a, a_lo, a_hi in zip(q, lo, hi, strict=True)]
-        return np.array(clipped, dtype=np.float32)
+        obs = np.array(clipped, dtype=np.float32)
+        # read-only: a fresh array every step that nothing downstream may change, so that a
+        # potential can be handed it as it is (planshape.potentials.read_only); copy it to edit
+        obs.flags.writeable = False
+        return obs
 
     def _info(
         self, q: list[float], distance: float, success: bool, rejected: bool
