@@ -107,7 +107,10 @@ class NotANumber(Potential):
 
 @pytest.mark.parametrize(
     ("potential", "message"),
-    [(Exploding(), "raised ZeroDivisionError at state"), (NotANumber(), "returned nan at progress=.*at state")],
+    [
+        (Exploding(), "raised ZeroDivisionError at state"),
+        (NotANumber(), "returned nan at progress=.*at state"),
+    ],
 )
 def test_a_failing_potential_is_bad_input_naming_the_state(potential, message):
     aug = make_toy("reach").augmented

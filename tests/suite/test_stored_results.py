@@ -169,7 +169,11 @@ def _descendants(pid: int) -> set[int]:
 @pytest.mark.parametrize("number", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
 def test_a_signal_ends_every_process_of_the_benchmark(tmp_path, number):
     out = tmp_path / "out"
-    code = "import sys; from planshape.cli import main; sys.exit(main())"
+    # as from a terminal: a process started by a pool worker inherits SIGINT ignored
+    code = (
+        "import signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
+        "from planshape.cli import main; sys.exit(main())"
+    )
     selection = ["--tasks", "reach", "--seeds", "0", "-k", "dense and PPO"]
     bench = subprocess.Popen(
         [sys.executable, "-c", code, "bench", *selection, "--out", str(out), "--workers", "2"],
@@ -179,10 +183,12 @@ def test_a_signal_ends_every_process_of_the_benchmark(tmp_path, number):
         text=True,
     )
     deadline = time.monotonic() + 120
-    while len(_descendants(bench.pid)) < 2 and time.monotonic() < deadline:
+    while len(_workers(bench.pid)) < 2 and time.monotonic() < deadline:
         time.sleep(0.2)
-    pool = _descendants(bench.pid)
+    pool = _workers(bench.pid)
     assert len(pool) >= 2, "the process pool did not start"
+    while not (out / "invariance.json").exists() and time.monotonic() < deadline:
+        time.sleep(0.2)  # the controller has checked the potentials: the pool trains next
     time.sleep(3)  # into training
     bench.send_signal(number)
     output, _ = bench.communicate(timeout=120)
@@ -193,6 +199,20 @@ def test_a_signal_ends_every_process_of_the_benchmark(tmp_path, number):
         time.sleep(0.2)
     assert not _descendants_alive(pool), output
     assert not list(out.glob("runs/*.jsonl"))  # the interrupted run is not stored
+
+
+def _workers(pid: int) -> set[int]:
+    """The pool's worker processes among ``pid``'s descendants (execnet's bootstrap line), not
+    short-lived helpers such as ``git describe``."""
+    found = set()
+    for child in _descendants(pid):
+        try:
+            command = Path(f"/proc/{child}/cmdline").read_bytes()
+        except OSError:
+            continue
+        if b"sys.stdin.readline" in command:
+            found.add(child)
+    return found
 
 
 def _descendants_alive(pids: set[int]) -> set[int]:
