@@ -16,12 +16,13 @@ import argparse
 import json
 import os
 import signal
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from planshape.cli import Handler, subcommand
 from planshape.errors import BadInputError
-from planshape.profiles import PROFILES, RESULTS_ROOT, get_profile
+from planshape.profiles import PROFILES, RESULTS_ROOT, Profile, get_profile
 
 SUITE = Path(__file__).resolve().parent / "suite"
 
@@ -119,7 +120,7 @@ def run_bench(args: argparse.Namespace) -> int:
             f"--workers is the number of parallel runs, at least 1, not {args.workers}; leave it "
             "out for one per CPU core"
         )
-    check_store(args.out, profile.name)
+    check_store(args.out, profile, args.potential)
     tasks, seeds = resolve_tasks(args.tasks), parse_seeds(args.seeds)
     if not any(profile.runs(tasks=tasks, seeds=seeds)):
         raise BadInputError(
@@ -193,17 +194,21 @@ def _dry_run(args: argparse.Namespace, profile: Any) -> int:
     return 0
 
 
-def check_store(out: Path, profile: str) -> None:
+def check_store(out: Path, profile: Profile, extra_potentials: Sequence[str] = ()) -> None:
     """Refuse, before anything trains, a results folder that cannot take this profile's runs:
     ``--out`` is not a folder, a stored run file is damaged or unfinished (it would count as a
     missing run, or be lost), or the folder holds runs of another profile or of another
     evaluation protocol (new runs would mix into them). Nothing is changed.
 
+    A run stored by another profile whose id is one of this profile's runs is the same run
+    (ids hash what determines the numbers, not the profile's name), so it is accepted: a
+    larger profile's folder can start from a smaller one's runs (copy ``runs/*.jsonl``).
+
     Example:
         >>> import tempfile
-        >>> check_store(Path(tempfile.mkdtemp()), "smoke")  # an empty folder is fine
+        >>> check_store(Path(tempfile.mkdtemp()), get_profile("smoke"))  # an empty folder
     """
-    from planshape.runner import EVAL_PROTOCOL
+    from planshape.runner import EVAL_PROTOCOL, RunSpec
     from planshape.store import ResultStore
 
     for folder in (out, *out.parents):
@@ -212,18 +217,28 @@ def check_store(out: Path, profile: str) -> None:
                 f"--out {out}: {folder} is a file, not a folder; choose a folder for the results"
             )
     store = ResultStore(out)
+    stored = store.stored()
+    if not stored:
+        return
+    own = {
+        RunSpec.create(k, profile.name, profile.eval_every, profile.eval_episodes).run_id
+        for k in profile.runs(extra_potentials=extra_potentials)
+    }
     found: dict[tuple[str, int], str] = {}
-    for path in store.stored():
+    for path in stored:
         first = store.read(path)[0]
-        found.setdefault((first["profile"], int(first.get("eval_protocol", 1))), path.name)
-    foreign = {k: v for k, v in found.items() if k != (profile, EVAL_PROTOCOL)}
+        key = (first["profile"], int(first.get("eval_protocol", 1)))
+        if key[0] != profile.name and key[1] == EVAL_PROTOCOL and path.stem in own:
+            continue  # the same run, stored by another profile
+        found.setdefault(key, path.name)
+    foreign = {k: v for k, v in found.items() if k != (profile.name, EVAL_PROTOCOL)}
     if foreign:
         (other, protocol), example = min(foreign.items())
         raise BadInputError(
             f"{out}: holds runs of profile {other!r} evaluated with protocol {protocol} (e.g. "
-            f"runs/{example}); new runs of profile {profile!r} (protocol {EVAL_PROTOCOL}) would "
-            "mix into them. Choose another --out, or leave --out out to use the profile's own "
-            "folder"
+            f"runs/{example}); new runs of profile {profile.name!r} (protocol {EVAL_PROTOCOL}) "
+            "would mix into them. Choose another --out, or leave --out out to use the profile's "
+            "own folder"
         )
 
 

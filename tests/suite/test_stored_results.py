@@ -225,3 +225,29 @@ def _descendants_alive(pids: set[int]) -> set[int]:
         if state != "Z":
             alive.add(pid)
     return alive
+
+
+def test_a_larger_profile_starts_from_the_same_runs_of_a_smaller_one(tmp_path):
+    """Run ids hash what determines the numbers, not the profile: the default profile's run of
+    a key is the planar profile's run of it, and counts as stored there; a run the planar
+    profile does not have is still refused."""
+    from planshape.bench import check_store
+    from planshape.errors import BadInputError
+    from planshape.profiles import PROFILES, RunKey
+    from planshape.runner import EVAL_PROTOCOL, RunSpec
+    from tests.scoring.synthetic import make_run
+
+    default, planar = PROFILES["default"], PROFILES["planar"]
+    key = RunKey("planshape/Reach-v1", "sparse", "PPO", 0, 245_760)
+    assert key in set(default.runs()) and key in set(planar.runs())
+    run_id = RunSpec.create(key, "default", default.eval_every, default.eval_episodes).run_id
+    rows = make_run(
+        task=key.task, profile="default", eval_protocol=EVAL_PROTOCOL, budget=key.budget
+    )
+    ResultStore(tmp_path).write(run_id, [{**r, "run_id": run_id} for r in rows])
+    check_store(tmp_path, planar)  # the same run
+    assert ResultStore(tmp_path).has(
+        RunSpec.create(key, "planar", planar.eval_every, planar.eval_episodes).run_id
+    )
+    with pytest.raises(BadInputError, match="holds runs of profile 'default'"):
+        check_store(tmp_path, PROFILES["smoke"])
