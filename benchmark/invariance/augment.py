@@ -36,7 +36,7 @@ from scipy.sparse import csgraph
 
 from planshape.errors import BadInputError, PlanshapeError, PotentialValueError
 from planshape.invariance.mdp import TabularMDP
-from planshape.potentials import Geometry, Potential, ShapingContext
+from planshape.potentials import Geometry, Potential, ShapingContext, read_only
 from planshape.progress import PlanProgress
 
 __all__ = ["AugmentedMDP", "augment"]
@@ -114,6 +114,7 @@ class AugmentedMDP:
         observations = self.base.observations
         if observations is None:
             raise BadInputError("the base MDP has no observations to evaluate a potential on")
+        observations = read_only(observations)  # its rows too: no view per call
         subgoals, abstraction = self.progress.subgoals, self.progress.abstraction
         values = np.empty(self.n_states)
         x = 0

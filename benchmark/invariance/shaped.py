@@ -108,6 +108,7 @@ class PotentialBased(Shaping):
         # per augmented MDP (weakly: a toy built for one check must not pin memory, nor let a
         # later MDP at the same address see its tables): t -> φ table
         self._tables: WeakKeyDictionary[AugmentedMDP, dict[int, np.ndarray]] = WeakKeyDictionary()
+        self._probed: WeakKeyDictionary[AugmentedMDP, dict[int, str]] = WeakKeyDictionary()
 
     def time_dependent(self, aug: AugmentedMDP, horizon: int) -> bool:
         """As declared by ``Potential.time_dependent``: an undeclared potential cannot read
@@ -117,7 +118,12 @@ class PotentialBased(Shaping):
     def probe(self, aug: AugmentedMDP, setting: Setting) -> str:
         """What the table cannot show (:mod:`planshape.invariance.probes`): φ keeping state
         across calls, and, discounted, γ^t·φ that does not vanish; ``""`` if neither."""
-        found = hidden_state(self.potential, aug, setting.horizon, self._table(aug, 0))
+        probed = self._probed.setdefault(aug, {})
+        if setting.horizon not in probed:  # the same for every setting of that horizon
+            probed[setting.horizon] = hidden_state(
+                self.potential, aug, setting.horizon, self._table(aug, 0)
+            )
+        found = probed[setting.horizon]
         if not found and setting.kind == "discounted":
             found = growth(self.potential, aug, setting.gamma, setting.horizon)
         return found
