@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from planshape.cli import Handler, subcommand
+from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
 from planshape.profiles import PROFILES, RESULTS_ROOT, Profile, get_profile
 

@@ -13,7 +13,7 @@ import json
 from collections.abc import Iterable
 from typing import Any
 
-from planshape.cli import Handler, subcommand
+from planshape.commands import Handler, subcommand
 from planshape.registration import (
     REWARDS,
     abstract_model,

@@ -1,7 +1,8 @@
 """The ``planshape`` command.
 
 Each subcommand is one function decorated with :func:`subcommand`: it receives its own
-``argparse`` parser to fill and returns the function that runs it. :func:`main` maps errors to
+``argparse`` parser to fill and returns the function that runs it; the modules that define them
+are listed in :data:`planshape.commands.MODULES`. :func:`main` maps errors to
 exit statuses, the same for every subcommand:
 
 * 0: success;
@@ -26,19 +27,15 @@ import sys
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from planshape.commands import Handler, Setup, registered
+from planshape.commands import subcommand as _subcommand
 from planshape.errors import BadInputError, PlanshapeError, UnsolvableError
 
-__all__ = ["build_parser", "main", "subcommand"]
-
-Handler = Callable[[argparse.Namespace], int]
-_Setup = Callable[[argparse.ArgumentParser], Handler]
-
-#: name -> (one-line help, setup function); filled by :func:`subcommand`, in definition order.
-_SUBCOMMANDS: dict[str, tuple[str, _Setup]] = {}
+__all__ = ["Handler", "build_parser", "main", "subcommand"]
 
 
-def subcommand(name: str, help: str) -> Callable[[_Setup], _Setup]:
-    """Register ``planshape NAME``: the decorated function adds arguments, returns the handler.
+def subcommand(name: str, help: str) -> Callable[[Setup], Setup]:
+    """Register ``planshape NAME`` (:func:`planshape.commands.subcommand`).
 
     Example:
         >>> @subcommand("hello", "say hello")
@@ -48,14 +45,10 @@ def subcommand(name: str, help: str) -> Callable[[_Setup], _Setup]:
         >>> main(["hello", "--name", "planner"])
         hello planner
         0
+        >>> from planshape.commands import _SUBCOMMANDS
         >>> del _SUBCOMMANDS["hello"]
     """
-
-    def register(setup: _Setup) -> _Setup:
-        _SUBCOMMANDS[name] = (help, setup)
-        return setup
-
-    return register
+    return _subcommand(name, help)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -65,7 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Benchmark suite for reward densification with classical planning.",
     )
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for name, (help_text, setup) in _SUBCOMMANDS.items():
+    for name, (help_text, setup) in registered().items():
         sub = commands.add_parser(name, help=help_text, description=help_text)
         sub.set_defaults(handler=setup(sub))
     return parser
@@ -189,17 +182,5 @@ def _atoms(state: frozenset) -> str:
     return " ".join(sorted(map(format_atom, state))) or "(no atoms)"
 
 
-# --------------------------------------------------------------------------- other subcommands
-# Modules that define subcommands register them when imported; they import `subcommand` from
-# this module, so they are imported last.
-from planshape import bench as _bench  # noqa: E402,F401
-from planshape import catalog as _catalog  # noqa: E402,F401
-from planshape import probe as _probe  # noqa: E402,F401
-from planshape import results as _results  # noqa: E402,F401
-from planshape import videos as _videos  # noqa: E402,F401
-from planshape.invariance import command as _invariance_command  # noqa: E402,F401
-
-if __name__ == "__main__":  # python -m planshape.cli: use the module that others register into
-    from planshape.cli import main as _main
-
-    sys.exit(_main())
+if __name__ == "__main__":  # python -m planshape.cli
+    sys.exit(main())

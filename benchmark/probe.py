@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from planshape.cli import Handler, subcommand
+from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
 from planshape.hyperparams import hyperparameters
 from planshape.profiles import RunKey

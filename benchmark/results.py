@@ -20,7 +20,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from planshape.cli import Handler, subcommand
+from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
 
 __all__ = ["FLOAT_COLUMNS", "INT_COLUMNS", "export", "load"]

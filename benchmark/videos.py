@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from planshape.cli import Handler, subcommand
+from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
 from planshape.profiles import RunKey, get_profile
 

@@ -21,7 +21,7 @@ import json
 import sys
 from typing import TYPE_CHECKING, Any
 
-from planshape.cli import Handler, subcommand
+from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError, UnknownIdError
 
 if TYPE_CHECKING:
