@@ -46,8 +46,10 @@ _PLANAR = ("Reach", "Push", "MazeReach")
 
 def family(task: str) -> str:
     """``"planar"`` for reach, push and maze-reach (every version and distribution), else the
-    task's family name (``"MetaWorld"``)."""
-    name = task.split("/", 1)[-1].split("-", 1)[0].split("_", 1)[0]
+    family the task is registered with (``"MetaWorld"``)."""
+    from planshape.hyperparams import family as registered_family
+
+    name = registered_family(task)
     return "planar" if name.removesuffix("Randomized") in _PLANAR else name
 
 

@@ -105,8 +105,8 @@ PLANAR_FAMILIES = (
     *(f"{f}Randomized" for f in ("Reach", "Push", "MazeReach")),
 )
 
-#: (task family, algorithm) -> settings; the family is the part of the id before the first '-'
-#: or '_' after the namespace ("Reach", "PushRandomized", "MetaWorld", "PointMaze", "Fetch…").
+#: (task family, algorithm) -> settings; the family is the one each task is registered with
+#: ("Reach", "PushRandomized", "MetaWorld", "PointMaze", "FetchReach", ...).
 TABLE: dict[tuple[str, str], dict[str, Any]] = {
     **{(f, "PPO"): PPO_PLANAR for f in PLANAR_FAMILIES},
     **{(f, "SAC"): SAC_PLANAR for f in PLANAR_FAMILIES},
@@ -123,9 +123,11 @@ TASK_TABLE: dict[tuple[str, str], dict[str, Any]] = {
 
 
 def family(task_id: str) -> str:
-    """The family of a task id: ``"planshape/MetaWorld-reach-v3"`` -> ``"MetaWorld"``."""
-    name = task_id.split("/", 1)[-1]
-    return name.replace("_", "-").split("-", 1)[0]
+    """The family a task was registered with: ``"planshape/MetaWorld-reach-v3"`` ->
+    ``"MetaWorld"`` (:attr:`planshape.registration.TaskSpec.family`)."""
+    from planshape.registration import task_spec
+
+    return task_spec(task_id).family
 
 
 def hyperparameters(task_id: str, algo: str) -> dict[str, Any]:

@@ -309,8 +309,8 @@ _SAC_STEPS = {"Reach": 100_000, "Push": 100_000, "MazeReach": 60_000}
 
 
 def _per_task(steps: Mapping[str, int], tasks: Sequence[str]) -> dict[str, int]:
-    """Budgets of ``tasks`` by their name (``planshape/PushRandomized-v1`` is a push task)."""
-    return {t: steps[t.split("/")[1].split("-")[0].removesuffix("Randomized")] for t in tasks}
+    """Budgets of ``tasks`` by their family (``planshape/PushRandomized-v1`` is a push task)."""
+    return {t: steps[task_spec(t).family.removesuffix("Randomized")] for t in tasks}
 
 
 _PLANAR_BUDGETS = _per_task(_PPO_STEPS, PLANAR + RANDOMIZED)

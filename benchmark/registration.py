@@ -15,7 +15,8 @@ Example:
     ...     env_entry_point="my_tasks.toy:ToyEnv",
     ...     models={"single": "my_tasks.toy:single_model"},
     ...     max_episode_steps=25,
-    ...     description="a toy for the docs"))
+    ...     description="a toy for the docs",
+    ...     family="DocToy"))
     >>> "planshape/DocToy-v0" in task_ids()
     True
 """
@@ -81,6 +82,8 @@ class TaskSpec:
             sequences); the environment entry point then takes ``instances="train"`` or
             ``"eval"`` and reports each episode's instance as ``info["instance"]``, and every
             model factory takes that instance and builds the instance's model.
+        family: the task's family, the key of its hyperparameter tables
+            (:mod:`planshape.hyperparams`): ``"Reach"``, ``"PushRandomized"``, ``"MetaWorld"``.
     """
 
     id: str
@@ -93,8 +96,14 @@ class TaskSpec:
     kwargs: Mapping[str, Any] = field(default_factory=dict)
     fixed: bool = False
     instances: str = ""
+    family: str = ""
 
     def __post_init__(self) -> None:
+        if not self.family:
+            raise RegistrationError(
+                f"task {self.id!r}: name its family (family=...), the key of its "
+                "hyperparameter table (planshape.hyperparams), e.g. 'Reach' or 'MetaWorld'"
+            )
         if self.fixed and self.instances:
             raise RegistrationError(f"task {self.id!r}: a fixed task has no instance set")
         if not self.id.startswith(f"{NAMESPACE}/"):

@@ -18,6 +18,7 @@ from planshape.registration import TaskSpec, register_task
 register_task(
     TaskSpec(
         id="planshape/Reach-v1",
+        family="Reach",
         env_entry_point="planshape.tasks.planar.reach:ReachEnv",
         models={
             "single": "planshape.tasks.planar.paper_models:reach_single",
@@ -34,6 +35,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/Push-v1",
+        family="Push",
         env_entry_point="planshape.tasks.planar.push:PushEnv",
         models={
             "single": "planshape.tasks.planar.paper_models:push_single",
@@ -51,6 +53,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MazeReach-v1",
+        family="MazeReach",
         env_entry_point="planshape.tasks.planar.maze_reach:MazeReachEnv",
         models={
             "single": "planshape.tasks.planar.paper_models:maze_reach_single",
@@ -72,6 +75,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/ReachRandomized-v1",
+        family="ReachRandomized",
         env_entry_point="planshape.tasks.planar.reach:ReachEnv",
         models={
             "single": "planshape.tasks.planar.instances:reach_single",
@@ -88,6 +92,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/PushRandomized-v1",
+        family="PushRandomized",
         env_entry_point="planshape.tasks.planar.push:PushEnv",
         models={
             "single": "planshape.tasks.planar.instances:push_single",
@@ -105,6 +110,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MazeReachRandomized-v1",
+        family="MazeReachRandomized",
         env_entry_point="planshape.tasks.planar.maze_reach:MazeReachEnv",
         models={
             "single": "planshape.tasks.planar.instances:maze_reach_single",
@@ -125,6 +131,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/Reach-v0",
+        family="Reach",
         env_entry_point="planshape.tasks.planar.reach:ReachEnv",
         models={
             "single": "planshape.tasks.planar.abstract:reach_single",
@@ -140,6 +147,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/Push-v0",
+        family="Push",
         env_entry_point="planshape.tasks.planar.push:PushEnv",
         models={
             "single": "planshape.tasks.planar.abstract:push_single",
@@ -156,6 +164,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MazeReach-v0",
+        family="MazeReach",
         env_entry_point="planshape.tasks.planar.maze_reach:MazeReachEnv",
         models={
             "single": "planshape.tasks.planar.abstract:maze_reach_single",
@@ -177,6 +186,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-reach-v4",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.reach:stages"},
         max_episode_steps=500,
@@ -187,6 +197,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-reach-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.reach:stages_v3"},
         max_episode_steps=500,
@@ -197,6 +208,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-push-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.push:stages"},
         max_episode_steps=500,
@@ -207,6 +219,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-pick-place-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.pick_place:stages"},
         max_episode_steps=500,
@@ -217,6 +230,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-door-open-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.door:stages"},
         max_episode_steps=500,
@@ -227,6 +241,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-drawer-open-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.drawer:open_stages"},
         max_episode_steps=500,
@@ -237,6 +252,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-drawer-close-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.drawer:close_stages"},
         max_episode_steps=500,
@@ -247,6 +263,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-button-press-topdown-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.button:topdown_stages"},
         max_episode_steps=500,
@@ -257,6 +274,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-window-open-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.window:open_stages"},
         max_episode_steps=500,
@@ -267,6 +285,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-window-close-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.window:close_stages"},
         max_episode_steps=500,
@@ -277,6 +296,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/MetaWorld-button-press-v3",
+        family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
         models={"stages": "planshape.tasks.metaworld.button:front_stages"},
         max_episode_steps=500,
@@ -290,6 +310,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/PointMaze_UMaze-v3",
+        family="PointMaze",
         env_entry_point="planshape.tasks.robotics:point_maze",
         models={"grid": "planshape.tasks.robotics:umaze_grid"},
         max_episode_steps=300,
@@ -300,6 +321,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/PointMaze_Medium-v3",
+        family="PointMaze",
         env_entry_point="planshape.tasks.robotics:point_maze",
         models={"grid": "planshape.tasks.robotics:medium_grid"},
         max_episode_steps=600,
@@ -310,6 +332,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/FetchReach-v4",
+        family="FetchReach",
         env_entry_point="planshape.tasks.robotics:fetch",
         models={"stages": "planshape.tasks.robotics:fetch_reach_stages"},
         max_episode_steps=50,
@@ -320,6 +343,7 @@ register_task(
 register_task(
     TaskSpec(
         id="planshape/FetchPush-v4",
+        family="FetchPush",
         env_entry_point="planshape.tasks.robotics:fetch",
         models={"stages": "planshape.tasks.robotics:fetch_push_stages"},
         max_episode_steps=50,

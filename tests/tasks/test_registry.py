@@ -132,3 +132,19 @@ def test_one_observation_classification_agrees_with_the_batch_path(task: str, mo
     observations += [env.observation_space.sample() for _ in range(60)]
     for obs in observations:
         assert evaluator.holding(obs) == set(np.flatnonzero(evaluator(obs)).tolist())
+
+
+def test_a_task_family_is_a_field_of_its_registration():
+    """The family keys the hyperparameter tables; it is registered, not parsed from the id. For
+    every task it is what the id's name gave before, so no run id changes."""
+    from planshape.errors import RegistrationError
+    from planshape.hyperparams import family
+    from planshape.registration import TaskSpec, task_ids
+
+    for task in task_ids():
+        name = task.split("/", 1)[-1]
+        assert family(task) == name.replace("_", "-").split("-", 1)[0], task
+    with pytest.raises(RegistrationError, match="name its family"):
+        TaskSpec(
+            id="planshape/X-v0", env_entry_point="m:E", models={"a": "m:a"}, max_episode_steps=5
+        )
