@@ -32,6 +32,7 @@ __all__ = [
     "plot_interval_estimates",
     "plot_performance_profiles",
     "plot_probability_of_improvement",
+    "save_png",
     "style",
 ]
 
@@ -68,9 +69,11 @@ def style(entry: str) -> dict[str, Any]:
     }
 
 
-def _save(fig: Any, path: Path) -> Path:
-    buffer = io.BytesIO()  # no "Software" or date: the bytes depend on the data only
-    fig.savefig(buffer, format="png", dpi=_DPI, metadata={"Software": None})
+def save_png(fig: Any, path: Path, dpi: int = _DPI) -> Path:
+    """Write ``fig`` as a PNG atomically; no "Software" or date in it, so the bytes depend on
+    the data only (re-rendering unchanged results leaves the file as it was)."""
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=dpi, metadata={"Software": None})
     return write_atomic(path, buffer.getvalue())
 
 
@@ -128,7 +131,7 @@ def plot_interval_estimates(overall: Sequence[Mapping[str, Any]], path: Path) ->
     for ax in grid[-1]:
         ax.set_xlabel("normalized success (0 = sparse, 1 = dense)", fontsize=8)
     fig.suptitle("Aggregate interval estimates over tasks (95% stratified bootstrap CIs)")
-    return _save(fig, path)
+    return save_png(fig, path)
 
 
 def plot_performance_profiles(
@@ -176,7 +179,7 @@ def plot_performance_profiles(
                 labels.append(label)
     fig.legend(handles, labels, loc="outside right center", fontsize=7)
     fig.suptitle("Performance profiles over tasks (95% stratified bootstrap bands)")
-    return _save(fig, path)
+    return save_png(fig, path)
 
 
 def plot_probability_of_improvement(
@@ -220,4 +223,4 @@ def plot_probability_of_improvement(
         ax.set_title(f"{algo}: P(improvement)  ○ over sparse  ● over dense", fontsize=9)
         ax.set_xlabel("probability that a run of the entry ends with higher success")
     fig.suptitle("Probability of improvement, pooled over tasks (95% stratified bootstrap CIs)")
-    return _save(fig, path)
+    return save_png(fig, path)

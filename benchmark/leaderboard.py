@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import base64
 import html
-import io
 import json
 import math
 import re
@@ -39,6 +38,7 @@ from typing import Any
 import numpy as np
 
 from planshape.errors import ResultsError
+from planshape.figures import save_png, style
 from planshape.scoring import (
     DENSE,
     MIN_CI_SEEDS,
@@ -70,12 +70,6 @@ _STYLE = {
     "axes.spines.top": False,
     "axes.spines.right": False,
 }
-_REFERENCE_COLORS = {SPARSE: "#7f7f7f", DENSE: "#222222"}
-_PALETTE = (
-    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-    "#8c564b", "#e377c2", "#bcbd22", "#17becf", "#aec7e8",
-    "#ffbb78", "#98df8a", "#ff9896", "#c5b0d5", "#c49c94",
-)  # fmt: skip
 
 
 def slug(task: str) -> str:
@@ -570,26 +564,10 @@ def _render_html(
 # --------------------------------------------------------------------------------------------
 
 
-def _colors(entries: Iterable[str]) -> dict[str, str]:
-    """One color per entry, the same in every plot of a leaderboard."""
-    shaped = [e for e in _entry_order(entries) if e not in _REFERENCE_COLORS]
-    colors = dict(_REFERENCE_COLORS)
-    colors.update({e: _PALETTE[i % len(_PALETTE)] for i, e in enumerate(shaped)})
-    return colors
-
-
-def _save(fig: Any, path: Path) -> None:
-    # No "Software" (matplotlib version) and no creation time: the bytes depend on the data only.
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=_DPI, metadata={"Software": None})
-    write_atomic(path, buffer.getvalue())
-
-
 def _plot_curves(
     task: str,
     runs_by_algo: Mapping[str, Mapping[str, list[tuple[np.ndarray, np.ndarray]]]],
     budgets: Mapping[str, int],
-    colors: Mapping[str, str],
     path: Path,
     reps: int,
     seed: int,
@@ -598,8 +576,6 @@ def _plot_curves(
     line styles), with sparse and dense drawn thin in every panel for reference."""
     from matplotlib.figure import Figure
     from matplotlib.ticker import MaxNLocator
-
-    from planshape.figures import style
 
     algos = sorted(runs_by_algo)
     families = sorted(
@@ -653,20 +629,17 @@ def _plot_curves(
         f"{task}: success rate during training (mean over seeds, 95% bootstrap CI; "
         "sparse black, dense grey)"
     )
-    _save(fig, path)
+    save_png(fig, path, dpi=_DPI)
 
 
 def _plot_final_distance(
     task: str,
     rows_by_algo: Mapping[str, list[Mapping[str, Any]]],
-    colors: Mapping[str, str],
     path: Path,
     seeds: Mapping[tuple[str, str], list[float]] | None = None,
 ) -> None:
     """Bars of the mean final distance per entry with its CI, and every seed as a point."""
     from matplotlib.figure import Figure
-
-    from planshape.figures import style
 
     algos = sorted(rows_by_algo)
     width = max(len(rows) for rows in rows_by_algo.values())
@@ -710,7 +683,7 @@ def _plot_final_distance(
         f"{task}: final distance to the goal\n(lower is better; bars: mean over seeds with 95% "
         "bootstrap CI; points: each seed)"
     )
-    _save(fig, path)
+    save_png(fig, path, dpi=_DPI)
 
 
 def _render_plots(
@@ -730,7 +703,6 @@ def _render_plots(
         task, algo, entry = identity[run_id]
         runs.setdefault(task, {}).setdefault(algo, {}).setdefault(entry, []).append(curve)
     tasks = _by_task_and_algo(summary)
-    colors = _colors(r["entry"] for r in summary)
     seeds_of: dict[str, dict[tuple[str, str], list[float]]] = {}
     for r in sorted((r for r in rows if r["final"]), key=lambda r: (r["seed"], r["run_id"])):
         by_entry = seeds_of.setdefault(r["task"], {})
@@ -742,9 +714,9 @@ def _render_plots(
         for task, by_algo in tasks.items():
             budgets = {algo: rows_[0]["budget"] for algo, rows_ in by_algo.items()}
             curves_path = plots_dir / f"curves_{slug(task)}.png"
-            _plot_curves(task, runs[task], budgets, colors, curves_path, reps, seed)
+            _plot_curves(task, runs[task], budgets, curves_path, reps, seed)
             bars_path = plots_dir / f"final_distance_{slug(task)}.png"
-            _plot_final_distance(task, by_algo, colors, bars_path, seeds_of.get(task, {}))
+            _plot_final_distance(task, by_algo, bars_path, seeds_of.get(task, {}))
             written[task] = [
                 (f"{task}: learning curves", curves_path),
                 (f"{task}: final distance per entry", bars_path),
