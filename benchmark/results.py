@@ -20,20 +20,16 @@ import json
 from pathlib import Path
 from typing import Any
 
+from planshape import scoring
 from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
 
 __all__ = ["FLOAT_COLUMNS", "INT_COLUMNS", "export", "load"]
 
-INT_COLUMNS = ("seed", "step", "budget", "eval_episodes", "eval_protocol")
-FLOAT_COLUMNS = (
-    "success_rate",
-    "final_distance",
-    "sparse_return",
-    "gamma",
-    "steps_per_s",
-    "wall_time_s",
-)
+#: the typed columns of a row (:data:`planshape.scoring.INT_COLUMNS` and ``FLOAT_COLUMNS``),
+#: plus the evaluation protocol, which rows carry from protocol 2 on
+INT_COLUMNS = (*scoring.INT_COLUMNS, "eval_protocol")
+FLOAT_COLUMNS = scoring.FLOAT_COLUMNS
 #: the columns a frame starts with, in this order (the rest follow, sorted)
 LEADING = ("run_id", "profile", "task", "entry", "algo", "potential", "model", "seed", "step")
 

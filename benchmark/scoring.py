@@ -46,6 +46,8 @@ from planshape.errors import BadInputError, ResultsError
 
 __all__ = [
     "COLUMNS",
+    "FLOAT_COLUMNS",
+    "INT_COLUMNS",
     "MIN_CI_SEEDS",
     "REFERENCE_ENTRIES",
     "Interval",
@@ -109,8 +111,9 @@ INVARIANCE_VERDICTS: tuple[str, ...] = ("preserved", "violated", "not-checked", 
 #: returns [min, max] or a zero-width interval, which says nothing about the uncertainty
 MIN_CI_SEEDS = 5
 
-_INT_COLUMNS = ("seed", "step", "budget", "eval_episodes")
-_FLOAT_COLUMNS = (
+#: the typed columns of a row (the rest of :data:`COLUMNS` are strings, a flag and mappings)
+INT_COLUMNS = ("seed", "step", "budget", "eval_episodes")
+FLOAT_COLUMNS = (
     "success_rate",
     "final_distance",
     "sparse_return",
@@ -151,12 +154,12 @@ def _checked(row: Any) -> dict[str, Any]:
             "Re-run those runs (delete their files under runs/)"
         )
     out = dict(row)
-    for column in _INT_COLUMNS:
+    for column in INT_COLUMNS:
         value = out[column]
         if isinstance(value, bool) or not isinstance(value, int | float) or value != int(value):
             raise _RowProblem(f"column {column!r} must be an integer, got {value!r}")
         out[column] = int(value)
-    for column in _FLOAT_COLUMNS:
+    for column in FLOAT_COLUMNS:
         value = out[column]
         if value is None:
             out[column] = math.nan
