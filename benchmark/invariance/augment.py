@@ -96,10 +96,28 @@ class AugmentedMDP:
         """Whether every stored transition enters a terminal state."""
         return self.mdp.terminal[self.entry_next]
 
+    @functools.cached_property
+    def observations(self) -> np.ndarray:
+        """The base MDP's observations, read-only (its rows too: a potential is handed one
+        without a view per call)."""
+        if self.base.observations is None:
+            raise BadInputError("the base MDP has no observations to evaluate a potential on")
+        return read_only(self.base.observations)
+
     def observation(self, x: int) -> np.ndarray:
-        """The observation of augmented state ``x``."""
-        assert self.base.observations is not None
-        return self.base.observations[self.state[x]]
+        """The observation of augmented state ``x`` (read-only)."""
+        return self.observations[self.state[x]]
+
+    def context(self, x: int, t: int) -> ShapingContext:
+        """The context the shaping wrapper builds for augmented state ``x`` at time ``t``."""
+        return ShapingContext(
+            obs=self.observation(x),
+            progress=int(self.plan_progress[x]),
+            t=t,
+            subgoals=self.progress.subgoals,
+            geometry=self.geometry,
+            abstraction=self.progress.abstraction,
+        )
 
     def lift(self, base_values: np.ndarray) -> np.ndarray:
         """Per-base-state values (``(n_states, …)``) repeated for every progress value."""
@@ -111,14 +129,12 @@ class AugmentedMDP:
         Raises :class:`BadInputError` naming the state when the potential fails on it (a
         submitted potential that raises or returns NaN is bad input).
         """
-        observations = self.base.observations
-        if observations is None:
-            raise BadInputError("the base MDP has no observations to evaluate a potential on")
-        observations = read_only(observations)  # its rows too: no view per call
+        observations = self.observations
         subgoals, abstraction = self.progress.subgoals, self.progress.abstraction
         values = np.empty(self.n_states)
         x = 0
         try:
+            # the context of :meth:`context`, built inline: this loop visits every state
             for x, (s, p) in enumerate(
                 zip(self.state.tolist(), self.plan_progress.tolist(), strict=True)
             ):

@@ -30,7 +30,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from planshape.invariance.augment import AugmentedMDP
-from planshape.potentials import Potential, ShapingContext
+from planshape.potentials import Potential
 
 __all__ = ["growth", "hidden_state"]
 
@@ -41,16 +41,7 @@ DOUBLINGS = 5
 
 
 def _phi(potential: Potential, aug: AugmentedMDP, x: int, t: int) -> float:
-    return potential(
-        ShapingContext(
-            obs=aug.observation(x),
-            progress=int(aug.plan_progress[x]),
-            t=t,
-            subgoals=aug.progress.subgoals,
-            geometry=aug.geometry,
-            abstraction=aug.progress.abstraction,
-        )
-    )
+    return potential(aug.context(x, t))
 
 
 def _episodes(aug: AugmentedMDP, horizon: int, rng: np.random.Generator) -> list[list[int]]:
