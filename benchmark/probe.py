@@ -42,7 +42,7 @@ from planshape.errors import BadInputError
 from planshape.hyperparams import hyperparameters
 from planshape.profiles import RunKey
 
-__all__ = ["probe"]
+__all__ = ["checked_key", "probe"]
 
 
 def probe(key: RunKey, chunks: int = 8, eval_episodes: int = 10) -> list[dict[str, Any]]:
@@ -96,31 +96,38 @@ def probe(key: RunKey, chunks: int = 8, eval_episodes: int = 10) -> list[dict[st
     return rows
 
 
-def _checked_key(args: argparse.Namespace) -> RunKey:
-    """The run of the command line, every part checked before anything trains (exit 2)."""
+def checked_key(task: str, entry: str, algo: str, seed: int, budget: int) -> RunKey:
+    """The run of a command line (``probe``, ``render``), every part checked before anything
+    trains: a short task name as ``bench --tasks`` takes it, a known learner, an entry the task
+    has, a seed ≥ 0 and a budget ≥ 1 (else :class:`BadInputError`, exit 2).
+
+    Example:
+        >>> checked_key("maze-reach", "plan-distance/grid", "PPO", 0, 1024).task
+        'planshape/MazeReach-v1'
+    """
     from planshape.learners import learner
     from planshape.potentials import potential_ids
     from planshape.registration import task_spec
     from planshape.suite.session import resolve_tasks
 
-    (task,) = resolve_tasks(args.task) or [args.task]
-    learner(args.algo)  # an unknown learner is an UnknownIdError naming the known ones
-    if args.entry not in ("sparse", "dense"):
-        potential, _, model = args.entry.rpartition("/")
+    (task,) = resolve_tasks(task) or [task]
+    learner(algo)  # an unknown learner is an UnknownIdError naming the known ones
+    if entry not in ("sparse", "dense"):
+        potential, _, model = entry.rpartition("/")
         models = list(task_spec(task).models)
         if not potential or model not in models:
             raise BadInputError(
-                f"entry {args.entry!r}: write sparse, dense or POTENTIAL/MODEL with a model of "
+                f"entry {entry!r}: write sparse, dense or POTENTIAL/MODEL with a model of "
                 f"{task} ({', '.join(models)})"
             )
         if potential not in potential_ids() and ":" not in potential:
             raise BadInputError(
-                f"entry {args.entry!r}: unknown potential {potential!r}; known: "
+                f"entry {entry!r}: unknown potential {potential!r}; known: "
                 + ", ".join(potential_ids())
             )
-    if args.seed < 0 or args.budget < 1 or args.episodes < 1:
+    if seed < 0 or budget < 1:
         raise BadInputError("--seed must be ≥ 0, --budget and --episodes ≥ 1")
-    return RunKey(task, args.entry, args.algo, args.seed, args.budget)
+    return RunKey(task, entry, algo, seed, budget)
 
 
 def _mean(values: Any) -> float | None:
@@ -186,7 +193,9 @@ def _probe_command(parser: argparse.ArgumentParser) -> Handler:
     parser.add_argument("--json", action="store_true", help="print JSON rows")
 
     def run(args: argparse.Namespace) -> int:
-        key = _checked_key(args)
+        if args.episodes < 1:
+            raise BadInputError("--seed must be ≥ 0, --budget and --episodes ≥ 1")
+        key = checked_key(args.task, args.entry, args.algo, args.seed, args.budget)
         rows = probe(key, args.chunks, args.episodes)
         print(json.dumps(rows) if args.json else format_rows(rows))
         return 0

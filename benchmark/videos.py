@@ -104,17 +104,18 @@ def _render(parser: argparse.ArgumentParser) -> Handler:
 
 
 def _run_render(args: argparse.Namespace) -> int:
-    from planshape.suite.session import resolve_tasks
+    from planshape.probe import checked_key
 
     profile = get_profile(args.profile)
-    (task,) = resolve_tasks(args.task) or [args.task]
-    budgets = profile.budgets()
-    if (task, args.algo) not in budgets:
+    key = checked_key(args.task, args.entry, args.algo, args.seed, budget=1)
+    budget = profile.budgets().get((key.task, key.algo))
+    if budget is None:
         raise BadInputError(
-            f"profile {profile.name!r} has no budget for {task} with {args.algo}; pick a "
+            f"profile {profile.name!r} has no budget for {key.task} with {key.algo}; pick a "
             "profile that runs it (planshape bench --profile NAME --dry-run lists the runs)"
         )
-    key = RunKey(task, args.entry, args.algo, args.seed, budgets[(task, args.algo)])
+    key = RunKey(key.task, key.entry, key.algo, key.seed, budget)
+    task = key.task
     out = args.out if args.out is not None else Path(profile.folder)
     path = out / VIDEOS_DIR / video_name(key)
     final = policy_video(key, profile.name, path)

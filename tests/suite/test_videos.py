@@ -25,3 +25,9 @@ def test_render_writes_the_policy_of_the_stored_spec(tmp_path, capsys):
 def test_render_refuses_a_run_its_profile_does_not_have(tmp_path, capsys):
     assert main(["render", "push", "dense", "--profile", "smoke", "--out", str(tmp_path)]) == 2
     assert "has no budget for planshape/Push-v1 with PPO" in capsys.readouterr().err
+
+
+def test_render_checks_its_run_as_probe_does(tmp_path, capsys):
+    assert main(["render", "reach", "nope", "--profile", "smoke", "--out", str(tmp_path)]) == 2
+    assert "entry 'nope': write sparse, dense or POTENTIAL/MODEL" in capsys.readouterr().err
+    assert not (tmp_path / "videos").exists()

@@ -31,6 +31,7 @@ MODULES = [
     "planshape.planning.prepass",
     "planshape.figures",
     "planshape.videos",
+    "planshape.probe",
 ]
 
 
