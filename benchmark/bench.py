@@ -13,10 +13,11 @@ Example:
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import signal
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -145,24 +146,22 @@ def run_bench(args: argparse.Namespace) -> int:
     return 0 if status == pytest.ExitCode.OK else 1
 
 
-class _signals_interrupt:
+@contextlib.contextmanager
+def _signals_interrupt() -> Iterator[list[int]]:
     """While the suite runs, SIGTERM (and SIGHUP) interrupt it as Ctrl-C does: pytest then
-    tears the process pool down, so no worker is left training. The signals received are
-    listed, for the exit status (128 + the signal's number, 130 for Ctrl-C)."""
+    tears the process pool down, so no worker is left training. Yields the signals received,
+    for the exit status (128 + the signal's number, 130 for Ctrl-C)."""
+    received: list[int] = []
 
-    SIGNALS = (signal.SIGTERM, signal.SIGHUP)
-
-    def __enter__(self) -> list[int]:
-        self.received: list[int] = []
-        self.previous = {s: signal.signal(s, self._interrupt) for s in self.SIGNALS}
-        return self.received
-
-    def _interrupt(self, number: int, _frame: Any) -> None:
-        self.received.append(number)
+    def interrupt(number: int, _frame: Any) -> None:
+        received.append(number)
         raise KeyboardInterrupt(f"signal {signal.Signals(number).name}")
 
-    def __exit__(self, *_exc: Any) -> None:
-        for number, handler in self.previous.items():
+    previous = {s: signal.signal(s, interrupt) for s in (signal.SIGTERM, signal.SIGHUP)}
+    try:
+        yield received
+    finally:
+        for number, handler in previous.items():
             signal.signal(number, handler)
 
 
