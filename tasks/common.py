@@ -13,10 +13,11 @@ from __future__ import annotations
 import hashlib
 import math
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
+
+from planshape.store import write_atomic
 
 
 def pddl_root() -> Path:
@@ -73,9 +74,7 @@ def generated_file(stem: str, text: str, suffix: str = ".pddl") -> Path:
     except FileNotFoundError:
         intact = False
     if not intact:
-        with tempfile.NamedTemporaryFile("wb", dir=path.parent, delete=False, suffix=".tmp") as f:
-            f.write(data)
-        os.replace(f.name, path)
+        write_atomic(path, data)
     return path
 
 
