@@ -32,7 +32,8 @@ class TopDownCanvas:
         self.low = np.array(geometry.workspace.low)
         high = np.array(geometry.workspace.high)
         self.scale = scale
-        width, height = np.ceil((high - self.low) * scale).astype(int)
+        # rounded first: a 0.55 m side is 220.00000000000003 pixels, which is 220, not 221
+        width, height = np.ceil(np.round((high - self.low) * scale, 6)).astype(int)
         self.image = np.empty((height, width, 3), dtype=np.uint8)
         self.image[:] = BACKGROUND
         cols, rows = np.meshgrid(np.arange(width), np.arange(height))
