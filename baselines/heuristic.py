@@ -68,7 +68,13 @@ from planshape.errors import BadInputError, PotentialError
 from planshape.planning.grounding import ground_task
 from planshape.planning.relaxed import h_add, h_ff, h_max
 from planshape.planning.statespace import DEFAULT_MAX_STATES, GoalDistances
-from planshape.potentials import IdentityCache, Potential, ShapingContext, point_distance
+from planshape.potentials import (
+    IdentityCache,
+    Potential,
+    ShapingContext,
+    StepPotential,
+    point_distance,
+)
 
 __all__ = ["HEURISTICS", "HStarGeodesic", "HeuristicPotential", "ModelBinding"]
 
@@ -335,6 +341,10 @@ class HeuristicPotential(_BoundPotential):
     def potential(self, ctx: ShapingContext) -> float:
         return self._cached(self._model(ctx), ctx)
 
+    def specialize(self, ctx: ShapingContext) -> StepPotential | None:
+        """φ remembered per key of the classifiers (φ is a function of ŝ, and ŝ of the key)."""
+        return _per_key(self, ctx, self.potential)
+
 
 class HStarGeodesic(_BoundPotential):
     """h* with sub-place resolution: the distance to the goal along the abstract state space,
@@ -400,12 +410,17 @@ class HStarGeodesic(_BoundPotential):
                             break
         return h, moves
 
-    def potential(self, ctx: ShapingContext) -> float:
+    def _entry(self, ctx: ShapingContext) -> tuple[_PerModel, tuple[float, list]]:
         model = self._model(ctx)
         key, mask = model.binding.state_key(ctx)
         entry = model.by_key.get(key)
         if entry is None:
             entry = model.by_key[key] = self._moves(model, ctx, mask())
+        return model, entry
+
+    @staticmethod
+    def _along(model: _PerModel, entry: tuple[float, list], geometry: Any, obs: Any) -> float:
+        """φ of ``obs`` in the abstract state whose (h*, optimal moves) are ``entry``."""
         h, moves = entry
         if h == 0:
             return 0.0
@@ -413,7 +428,7 @@ class HStarGeodesic(_BoundPotential):
             return -model.extra["dead"] * model.normalizer
         left = float(h)
         if moves:
-            positions = ctx.geometry.positions(ctx.obs)
+            positions = geometry.positions(obs)
             left = math.inf
             for entity, a, b, length in moves:
                 p = positions[entity]
@@ -421,6 +436,50 @@ class HStarGeodesic(_BoundPotential):
                     left, h + point_distance(p, a) / length, h - 1 + point_distance(p, b) / length
                 )
         return -left * model.normalizer
+
+    def potential(self, ctx: ShapingContext) -> float:
+        model, entry = self._entry(ctx)
+        return self._along(model, entry, ctx.geometry, ctx.obs)
+
+    def specialize(self, ctx: ShapingContext) -> StepPotential | None:
+        """The abstract state's (h*, optimal moves) remembered per key of the classifiers; the
+        continuous part measured on every step."""
+        model, geometry = self._model(ctx), ctx.geometry
+        return _per_key(
+            self,
+            ctx,
+            lambda here: self._entry(here)[1],
+            lambda entry, obs: self._along(model, entry, geometry, obs),
+        )
+
+
+def _per_key(
+    potential: _BoundPotential,
+    ctx: ShapingContext,
+    remember: Callable[[ShapingContext], Any],
+    measure: Callable[[Any, Any], float] | None = None,
+) -> StepPotential | None:
+    """A step function that remembers, per key of the model's classifiers, what
+    ``remember(context)`` gives for the first observation seen with that key (observations
+    with one key have one abstract state), and returns it, or ``measure(remembered, obs)``.
+    None when the classifiers have no keys (the model's places are not one grid)."""
+    classify = potential._model(ctx).binding._classify
+    if classify is None or not classify.keyed:
+        return None
+    subgoals, geometry, abstraction = ctx.subgoals, ctx.geometry, ctx.abstraction
+    remembered: dict[tuple[Any, ...], Any] = {}
+
+    def phi(obs: Any, progress: int) -> float:
+        key = classify.key(obs)
+        value = remembered.get(key)
+        if value is None:
+            if len(remembered) >= 1 << 16:
+                remembered.clear()
+            here = ShapingContext(obs, progress, 0, subgoals, geometry, abstraction)
+            value = remembered[key] = remember(here)
+        return value if measure is None else measure(value, obs)
+
+    return phi
 
 
 def _located(geometry: Any, atoms: frozenset) -> Mapping[str, list[float]]:

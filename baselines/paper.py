@@ -23,7 +23,11 @@ Example:
 
 from __future__ import annotations
 
-from planshape.potentials import Potential, ShapingContext, point_distance
+from typing import Any
+
+import numpy as np
+
+from planshape.potentials import Potential, ShapingContext, StepPotential, point_distance
 
 
 def _fraction_done(ctx: ShapingContext, normalize: bool) -> float:
@@ -41,6 +45,13 @@ class PlanBased(Potential):
 
     def potential(self, ctx: ShapingContext) -> float:
         return _fraction_done(ctx, self.normalize)
+
+    def specialize(self, ctx: ShapingContext) -> StepPotential | None:
+        """:meth:`potential` as a function of progress alone."""
+        final = ctx.final
+        if not self.normalize:
+            return lambda obs, progress: float(progress)
+        return (lambda obs, progress: progress / final) if final else (lambda obs, p: 0.0)
 
 
 class TimeVarying(Potential):
@@ -72,3 +83,23 @@ class DistanceVarying(Potential):
             if distance > self.tolerance:
                 return -distance
         return 0.0
+
+    def specialize(self, ctx: ShapingContext) -> StepPotential | None:
+        """:meth:`potential` for ``ctx``'s plan as a function of (observation, progress): each
+        subgoal's targets looked up once, as plain floats."""
+        geometry = ctx.require_geometry(self.name)
+        final, tolerance, positions = ctx.final, self.tolerance, geometry.positions
+        targets = [
+            [(entity, np.asarray(target).tolist()) for entity, target in located.items()]
+            for located in (geometry.locate(subgoal) for subgoal in ctx.subgoals)
+        ]
+
+        def phi(obs: Any, progress: int) -> float:
+            where = positions(obs)
+            for entity, target in targets[min(progress + 1, final)]:
+                distance = point_distance(where[entity], target)
+                if distance > tolerance:
+                    return -distance
+            return 0.0
+
+        return phi

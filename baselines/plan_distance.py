@@ -48,6 +48,7 @@ from planshape.potentials import (
     IdentityCache,
     Potential,
     ShapingContext,
+    StepPotential,
     point_distance,
 )
 
@@ -121,3 +122,26 @@ class PlanDistance(Potential):
     def potential(self, ctx: ShapingContext) -> float:
         left = self.steps_left(ctx)
         return -left / ctx.final if self.normalize and ctx.final > 0 else -left
+
+    def specialize(self, ctx: ShapingContext) -> StepPotential | None:
+        """:meth:`potential` for ``ctx``'s plan as a function of (observation, progress)."""
+        final = ctx.final
+        if final <= 0:
+            return None
+        table = self._table(ctx)
+        positions = ctx.require_geometry(self.name).positions
+        tolerance, normalize = self.tolerance, self.normalize
+
+        def phi(obs: Any, progress: int) -> float:
+            j = min(progress + 1, final)
+            where = positions(obs)
+            for entity, target, unit in table[j]:
+                distance = point_distance(where[entity], target)
+                if distance > tolerance:
+                    left = final - j + distance / unit
+                    break
+            else:
+                left = float(final - j)
+            return -left / final if normalize else -left
+
+        return phi

@@ -51,6 +51,7 @@ from planshape.potentials import (
     IdentityCache,
     Potential,
     ShapingContext,
+    StepPotential,
     point_distance,
 )
 
@@ -190,10 +191,28 @@ class PlanPath(Potential):
             d0 = path.length
         return order, path, d0 if d0 > 0 else 1.0
 
-    def potential(self, ctx: ShapingContext) -> float:
+    def _prepared(self, ctx: ShapingContext) -> _Prepared:
         geometry = ctx.require_geometry(self.name)
-        order, path, d0 = self._paths.get(ctx.subgoals, lambda: self._prepare(ctx, geometry))
-        positions = geometry.positions(ctx.obs)
+        return self._paths.get(ctx.subgoals, lambda: self._prepare(ctx, geometry))
+
+    def potential(self, ctx: ShapingContext) -> float:
+        order, path, d0 = self._prepared(ctx)
+        positions = ctx.require_geometry(self.name).positions(ctx.obs)
         last = positions[order[-1]]
         lead = chain_distance({e: positions[e] for e in order[:-1]}, last)
         return -(lead + path.rest(last)) / d0
+
+    def specialize(self, ctx: ShapingContext) -> StepPotential | None:
+        """:meth:`potential` for ``ctx``'s plan as a function of the observation (the same
+        sums in the same order, so the same floats)."""
+        order, path, d0 = self._prepared(ctx)
+        positions = ctx.require_geometry(self.name).positions
+        rest, last_entity = path.rest, order[-1]
+
+        def phi(obs: Any, progress: int) -> float:
+            where = positions(obs)
+            points = [where[e] for e in order]
+            lead = sum(point_distance(a, b) for a, b in itertools.pairwise(points))
+            return -(lead + rest(where[last_entity])) / d0
+
+        return phi

@@ -173,7 +173,7 @@ class AtomEvaluator:
         if not isinstance(obs, np.ndarray | Mapping):
             obs = np.asarray(obs)
         if self._keys is not None:
-            key = tuple(k(obs) for k in self._keys)
+            key = self.key(obs)
             remembered = self._held_by_key.get(key)
             if remembered is None:
                 if len(self._held_by_key) >= _MAX_REMEMBERED:
@@ -181,6 +181,20 @@ class AtomEvaluator:
                 remembered = self._held_by_key[key] = frozenset(self._holding(obs))
             return remembered
         return self._holding(obs)
+
+    @property
+    def keyed(self) -> bool:
+        """Whether every classifier has a key, so that what holds is a function of :meth:`key`."""
+        return self._keys is not None
+
+    def key(self, obs: Any) -> tuple[Hashable, ...]:
+        """The classifiers' keys of one observation (only when :attr:`keyed`): observations
+        with equal keys have the same atoms holding."""
+        keys = self._keys
+        assert keys is not None, "key() of an evaluator whose classifiers have no key"
+        if len(keys) == 1:
+            return (keys[0](obs),)
+        return tuple([k(obs) for k in keys])
 
     def _holding(self, obs: Any) -> set[int]:
         held: set[int] = set()

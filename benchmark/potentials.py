@@ -47,6 +47,8 @@ from planshape.errors import (
 from planshape.planning.model import AbstractState
 
 _Value = TypeVar("_Value")
+#: a potential specialized to one plan: (observation, progress) -> φ before scale
+StepPotential = Callable[[Any, int], float]
 
 
 class IdentityCache(Generic[_Value]):
@@ -299,6 +301,40 @@ class Potential(ABC):
                 "a potential must be finite everywhere (guard divisions and logs)"
             )
         return value
+
+    def specialize(self, ctx: ShapingContext) -> StepPotential | None:
+        """Optional: φ before ``scale`` as a plain function of (observation, progress), for
+        the plan, geometry and abstraction of ``ctx`` (an episode's first state).
+
+        The shaping wrapper calls it once per plan and then evaluates that function on every
+        step instead of building a context and calling :meth:`potential`: the planar tasks
+        step in about 20 µs, so a context and the checks of ``__call__`` are a large part of
+        a step. The function must return what ``potential`` returns, bit for bit, on every
+        observation and progress of that plan (a test checks each reference potential); it
+        is never given the time index, so a ``time_dependent`` potential cannot have one.
+        A value that is not one finite float sends that step through ``__call__``, which
+        names the problem. Only the class whose body defines ``specialize`` gets the fast
+        path (:meth:`step_function`): a subclass that changes how φ is computed falls back to
+        :meth:`potential` unless it restates ``specialize = Parent.specialize``.
+
+        Example:
+            >>> class Progress(Potential):
+            ...     def potential(self, ctx):
+            ...         return float(ctx.progress)
+            ...     def specialize(self, ctx):
+            ...         return lambda obs, progress: float(progress)
+            >>> ctx = ShapingContext(obs=None, progress=2, t=0, subgoals=(frozenset(),) * 4)
+            >>> Progress().step_function(ctx)(None, 2) == Progress().potential(ctx)
+            True
+        """
+        return None
+
+    def step_function(self, ctx: ShapingContext) -> StepPotential | None:
+        """:meth:`specialize` where this class may use it (see there), else None."""
+        cls = type(self)
+        if self.time_dependent or "specialize" not in cls.__dict__:
+            return None
+        return self.specialize(ctx)
 
     @property
     def name(self) -> str:

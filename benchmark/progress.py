@@ -94,7 +94,8 @@ class PlanProgress:
                 self._by_atom[j].append(i)
         self._always = max((i for i, need in enumerate(self._needs) if not need), default=-1)
         self._exact = {need: i for i, need in enumerate(self._needs)}
-        self._furthest_by_held: dict[tuple[frozenset[int], int], int] = {}
+        self._keyed = self.match == "fluents" and self._evaluate.keyed
+        self._furthest_by_key: dict[tuple[tuple[Any, ...], int], int] = {}
 
     @property
     def final(self) -> int:
@@ -139,16 +140,18 @@ class PlanProgress:
         search walks the held atoms' subgoals, furthest first, and stops at ``floor``. It
         gives what :meth:`reached` gives (a test checks this on random observations).
         """
+        if self._keyed:  # what holds is a function of the classifiers' keys: remember answers
+            remembered = (self._evaluate.key(obs), floor)
+            answer = self._furthest_by_key.get(remembered)
+            if answer is None:
+                if len(self._furthest_by_key) >= 1 << 16:
+                    self._furthest_by_key.clear()
+                held = self._evaluate.holding(obs)
+                answer = self._furthest_by_key[remembered] = self._search(held, floor)
+            return answer
         held = self._evaluate.holding(obs)
         if self.match == "exact":
             return max(floor, self._exact.get(frozenset(held), -1))
-        if isinstance(held, frozenset):  # a remembered answer (keyed classifiers): remember ours
-            answer = self._furthest_by_held.get((held, floor))
-            if answer is None:
-                if len(self._furthest_by_held) >= 1 << 16:
-                    self._furthest_by_held.clear()
-                answer = self._furthest_by_held[held, floor] = self._search(held, floor)
-            return answer
         return self._search(held, floor)
 
     def _search(self, held: set[int] | frozenset[int], floor: int) -> int:

@@ -38,7 +38,7 @@ from typing import Any, SupportsFloat
 import gymnasium
 
 from planshape.errors import BadInputError
-from planshape.potentials import Geometry, Potential, ShapingContext
+from planshape.potentials import Geometry, Potential, ShapingContext, StepPotential
 from planshape.progress import PlanProgress
 
 
@@ -87,18 +87,38 @@ class PotentialShaping(gymnasium.Wrapper):
         self._max_idx = 0
         self._t = 0
         self._phi_prev = 0.0
+        # the potential specialized to the current plan (Potential.specialize), and for what
+        self._step_phi: StepPotential | None = None
+        self._specialized_for: tuple[Any, ...] = ()
+
+    def _context(self, obs: Any) -> ShapingContext:
+        return ShapingContext(
+            obs=obs,
+            progress=self._max_idx,
+            t=self._t,
+            subgoals=self.progress.subgoals,
+            geometry=self.geometry,
+            abstraction=self.progress.abstraction,
+        )
 
     def _phi(self, obs: Any) -> float:
-        return self.potential(
-            ShapingContext(
-                obs=obs,
-                progress=self._max_idx,
-                t=self._t,
-                subgoals=self.progress.subgoals,
-                geometry=self.geometry,
-                abstraction=self.progress.abstraction,
-            )
-        )
+        step_phi = self._step_phi
+        if step_phi is not None:
+            raw = step_phi(obs, self._max_idx)
+            if type(raw) is float:  # as Potential.__call__: scale, then check finiteness
+                value = self.potential.scale * raw
+                if value - value == 0.0:
+                    return value
+        return self.potential(self._context(obs))  # which names what is wrong, if anything
+
+    def _specialize(self, obs: Any) -> None:
+        """Fetch the potential's per-plan step function when the plan or potential changed."""
+        key = (self.potential, self.progress, self.geometry)
+        if len(key) != len(self._specialized_for) or any(
+            a is not b for a, b in zip(key, self._specialized_for, strict=True)
+        ):
+            self._step_phi = self.potential.step_function(self._context(obs))
+            self._specialized_for = key
 
     def reset(self, **kwargs: Any) -> tuple[Any, dict[str, Any]]:
         obs, info = self.env.reset(**kwargs)
@@ -111,6 +131,7 @@ class PotentialShaping(gymnasium.Wrapper):
             self.progress, self.geometry = self._plans(info["instance"])
         self._t = 0
         self._max_idx = int(self.progress.initial(obs))
+        self._specialize(obs)
         self._phi_prev = self._phi(obs)
         info["potential"] = self._phi_prev
         info["progress"] = self._max_idx
