@@ -73,7 +73,6 @@ class TaskSpec:
         max_episode_steps: the episode length (Gymnasium's ``TimeLimit`` truncates).
         description: one line for ``planshape tasks``.
         default_model: the granularity used when ``model=`` is omitted (the first by default).
-        success_key: the ``info`` key holding the task's own success flag.
         kwargs: extra keyword arguments of the environment entry point.
         fixed: every episode starts in the same state and the environment is deterministic, so
             one episode of a deterministic policy measures it (the evaluation runs one).
@@ -92,7 +91,6 @@ class TaskSpec:
     max_episode_steps: int
     description: str = ""
     default_model: str = ""
-    success_key: str = "success"
     kwargs: Mapping[str, Any] = field(default_factory=dict)
     fixed: bool = False
     instances: str = ""
