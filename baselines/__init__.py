@@ -19,19 +19,19 @@ register_potential(
     "h-add-discounted",
     "planshape.baselines.heuristic:HeuristicPotential",
     heuristic="h-add",
-    gamma=0.99,
+    gamma="learner",
 )
 register_potential(
     "h-ff-discounted",
     "planshape.baselines.heuristic:HeuristicPotential",
     heuristic="h-ff",
-    gamma=0.99,
+    gamma="learner",
 )
 register_potential(
     "h-star-discounted",
     "planshape.baselines.heuristic:HeuristicPotential",
     heuristic="h-star",
-    gamma=0.99,
+    gamma="learner",
 )
 register_potential("h-star-geodesic", "planshape.baselines.heuristic:HStarGeodesic")
 

@@ -25,7 +25,7 @@ Definitions (``scale`` multiplies all of them; h0 = h(ŝ0), ŝ0 the plan's initi
 
 * linear (``gamma=None``): φ = −h(ŝ)/h0, so φ(ŝ0) = −1 and φ = 0 exactly on goal states;
   ``normalize=False`` gives φ = −h(ŝ).
-* discount-aware (``gamma`` = the learner's γ, 0.99 in the benchmark): φ = −(1 − γ^h)/(1 − γ),
+* discount-aware (``gamma`` = the learner's γ, from the shaping wrapper): φ = −(1 − γ^h)/(1 − γ),
   the discounted cost of h unit-cost steps, divided (``normalize=True``) by its value at ŝ0:
   φ = −(1 − γ^h)/(1 − γ^h0). Before normalizing, a step that lowers h by one gets
   F = γ·φ' − φ = 1 at every distance from the goal, and standing still 1 − γ^h < 1; with the
@@ -41,9 +41,9 @@ Definitions (``scale`` multiplies all of them; h0 = h(ŝ0), ŝ0 the plan's initi
   (``max_states``), h_dead = 2·h0 + 1. Pass ``dead_end=`` to set h_dead yourself.
 
 Registered: ``h-add``, ``h-ff``, ``h-star`` (linear), ``h-add-discounted``, ``h-ff-discounted``,
-``h-star-discounted`` (γ = 0.99; for another learner γ, ``make_potential("h-star-discounted",
-gamma=…)``) and ``h-star-geodesic`` (:class:`HStarGeodesic`). ``"h-max"`` is available through
-``HeuristicPotential("h-max")``.
+``h-star-discounted`` (with the learner's γ, which the shaping wrapper gives them:
+:meth:`HeuristicPotential.for_discount`) and ``h-star-geodesic`` (:class:`HStarGeodesic`).
+``"h-max"`` is available through ``HeuristicPotential("h-max")``.
 
 These potentials suit models whose places tile the space (the ``grid`` models): with waypoint
 models (``single``, ``multi``) an observation between places abstracts to a state with no
@@ -57,6 +57,7 @@ Example:
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Callable, Mapping
 from typing import Any
@@ -111,6 +112,10 @@ def _ids(mask: int) -> list[int]:
         ids.append(low.bit_length() - 1)
         mask ^= low
     return ids
+
+
+#: ``gamma`` of a discount-aware potential that takes the learner's discount from the wrapper
+LEARNER = "learner"
 
 
 class ModelBinding:
@@ -239,8 +244,9 @@ class HeuristicPotential(_BoundPotential):
     Args:
         heuristic: ``"h-add"``, ``"h-ff"``, ``"h-max"`` or ``"h-star"`` (see the module
             docstring).
-        gamma: ``None`` for the linear potential; the learner's discount for the
-            discount-aware one.
+        gamma: ``None`` for the linear potential; for the discount-aware one the learner's
+            discount, or ``"learner"`` to take it from the shaping wrapper
+            (:meth:`for_discount`; the registered ``h-*-discounted`` do).
         scale: multiplies φ.
         normalize: divide by the value at the plan's initial state ŝ0 (φ(ŝ0) = −1).
         dead_end: h assigned where the goal is unreachable (linear potential only); default
@@ -277,9 +283,14 @@ class HeuristicPotential(_BoundPotential):
             raise BadInputError(
                 f"unknown heuristic {heuristic!r}; known: {', '.join(sorted(HEURISTICS))}"
             )
-        if gamma is not None and (isinstance(gamma, bool) or not 0 < gamma < 1):
+        if (
+            gamma is not None
+            and gamma != LEARNER
+            and (isinstance(gamma, bool) or not isinstance(gamma, int | float) or not 0 < gamma < 1)
+        ):
             raise BadInputError(
-                f"gamma must be the learner's discount in (0, 1) or None, not {gamma!r}"
+                f"gamma must be a discount in (0, 1), {LEARNER!r} (the learner's, set by the "
+                f"shaping wrapper) or None, not {gamma!r}"
             )
         if dead_end is not None and not (math.isfinite(dead_end) and dead_end >= 0):
             raise BadInputError(f"dead_end must be a finite h value ≥ 0, not {dead_end!r}")
@@ -295,6 +306,21 @@ class HeuristicPotential(_BoundPotential):
             f"normalize={self.normalize})"
         )
 
+    def for_discount(self, gamma: float) -> Potential:
+        """With ``gamma="learner"``, a copy discounting with the learner's ``gamma``; with a
+        fixed or no ``gamma``, ``self``."""
+        if self.gamma != LEARNER:
+            return self
+        if not 0 < gamma < 1:
+            raise BadInputError(
+                f"potential {self.name!r} is −(1 − γ^h)/(1 − γ^h0) with the learner's γ, which "
+                f"must be below 1 (got {gamma}); use {self.heuristic!r}, its undiscounted form"
+            )
+        copied = copy.copy(self)
+        copied.gamma = float(gamma)
+        copied._models = IdentityCache()
+        return copied
+
     def h(self, ctx: ShapingContext) -> float:
         """h(ŝ) of the context's abstract state, unscaled (``math.inf`` at a dead end)."""
         model = self._model(ctx)
@@ -302,6 +328,12 @@ class HeuristicPotential(_BoundPotential):
         return self._evaluate(model.binding, mask())
 
     def _prepare(self, model: _PerModel) -> None:
+        if self.gamma == LEARNER:
+            raise PotentialError(
+                f"potential {self.name!r} discounts with the learner's γ, which the shaping "
+                "wrapper and the invariance checker give it; to evaluate it directly, take "
+                "potential.for_discount(gamma) first"
+            )
         binding = model.binding
         h0 = self._evaluate(binding, binding.initial)
         model.extra["h0"] = h0

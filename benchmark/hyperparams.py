@@ -47,8 +47,9 @@ from typing import Any
 from planshape.errors import UnknownIdError
 
 GAMMA = 0.99
-#: the multiplier of every potential in training: 1/(1 − γ), see the module docstring
-SHAPING_SCALE = 100.0
+#: the multiplier of every potential in training: 1/(1 − γ), see the module docstring; rounded,
+#: because in floating point 1/(1 − 0.99) is 99.99999999999991 and the runs record 100.0
+SHAPING_SCALE = round(1.0 / (1.0 - GAMMA), 6)
 
 PPO_PLANAR: dict[str, Any] = {
     "n_envs": 8,

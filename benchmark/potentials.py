@@ -302,6 +302,25 @@ class Potential(ABC):
             )
         return value
 
+    def for_discount(self, gamma: float) -> Potential:
+        """This potential for a learner whose discount is ``gamma``.
+
+        The shaping wrapper and the invariance checker call it with their γ before using the
+        potential, so a potential defined through the learner's discount (the
+        ``h-*-discounted`` ones) takes it from there instead of from a constant. Any fixed φ
+        keeps the optimal policy; what γ changes is which φ is meant. The default returns
+        ``self``.
+
+        Example:
+            >>> from planshape.potentials import make_potential
+            >>> make_potential("h-star-discounted").for_discount(0.95).gamma
+            0.95
+            >>> phi = make_potential("plan-based")
+            >>> phi.for_discount(0.95) is phi
+            True
+        """
+        return self
+
     def specialize(self, ctx: ShapingContext) -> StepPotential | None:
         """Optional: φ before ``scale`` as a plain function of (observation, progress), for
         the plan, geometry and abstraction of ``ctx`` (an episode's first state).

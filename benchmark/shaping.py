@@ -47,7 +47,9 @@ class PotentialShaping(gymnasium.Wrapper):
 
     Args:
         env: the task environment with its own (sparse or dense) reward.
-        potential: φ, see :class:`planshape.potentials.Potential`.
+        potential: φ, see :class:`planshape.potentials.Potential`; the wrapper shapes with
+            ``potential.for_discount(gamma)`` (a potential defined through the learner's
+            discount takes it from here).
         progress: the plan's subgoals and the reached test (:class:`PlanProgress`).
         gamma: the learner's discount, 0 < γ ≤ 1. Required: a shaping γ that differs from the
             learner's changes the optimal policy.
@@ -79,11 +81,11 @@ class PotentialShaping(gymnasium.Wrapper):
             raise BadInputError(
                 f"gamma must be a number in (0, 1], the learner's discount; got {gamma!r}"
             )
-        self.potential = potential
+        self.shaping_gamma = float(gamma)
+        self.potential = potential.for_discount(self.shaping_gamma)
         self.progress = progress
         self.geometry = geometry
         self._plans = plans
-        self.shaping_gamma = float(gamma)
         self._max_idx = 0
         self._t = 0
         self._phi_prev = 0.0

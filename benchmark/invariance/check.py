@@ -187,13 +187,15 @@ def check_potential(
     a potential that fails on a toy.
     """
     potential = make_potential(reference, **dict(potential_kwargs or {}))
-    shaping = PotentialBased(potential)
     names = list(mdps) if mdps is not None else default_toys()
     presets = list(settings) if settings is not None else list(DEFAULT_PRESETS)
     toys = [make_toy(name) for name in names]  # unknown names fail before any solving
     setting_of = {(t.name, p): t.setting(p) for t in toys for p in presets}
+    # the learner of a toy discounts with the toy's γ: a potential defined through the
+    # learner's discount is that toy's one in every setting (a fixed φ, also where γ = 1)
+    shaping_of = {t.name: PotentialBased(potential.for_discount(t.gamma)) for t in toys}
     verdicts = [
-        check_shaping(toy, shaping, setting_of[toy.name, preset], relative=relative)
+        check_shaping(toy, shaping_of[toy.name], setting_of[toy.name, preset], relative=relative)
         for toy in toys
         for preset in presets
     ]

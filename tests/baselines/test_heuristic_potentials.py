@@ -44,7 +44,7 @@ def centre(rc):
 
 def test_the_new_potentials_are_registered():
     assert set(NEW_IDS) <= set(potential_ids())
-    assert make_potential("h-star-discounted").gamma == 0.99
+    assert make_potential("h-star-discounted").gamma == "learner"
     assert make_potential("h-ff").gamma is None
     assert isinstance(make_potential("h-star-geodesic"), HStarGeodesic)
 
@@ -108,7 +108,7 @@ def test_the_detour_pays_more_than_the_straight_line_behind_the_wall(potential):
     b = maze()
     over, under = centre((0, 5)), centre((11, 5))
     assert np.linalg.norm(over - G.maze_goal) > np.linalg.norm(under - G.maze_goal)
-    phi = make_potential(potential)
+    phi = make_potential(potential).for_discount(0.99)
     assert phi(b.ctx(over)) > phi(b.ctx(under))
     # and every free cell: the nearer the goal along the walls, the larger φ
     distances = GoalDistances(ground_task(b.task))
@@ -174,7 +174,7 @@ def test_push_grid_values_and_normalization():
     start = np.array([*G.ee_start, *G.box_start], np.float32)
     done = np.array([0.45, 0.10, *G.box_goal], np.float32)
     for potential in HEURISTIC_IDS:
-        phi = make_potential(potential)
+        phi = make_potential(potential).for_discount(0.99)
         # the end effector starts 2 cm off its cell's centre, which only the geodesic sees
         assert phi(b.ctx(start)) == pytest.approx(
             -1.0, abs=0.01 if "geodesic" in potential else 1e-9
@@ -195,7 +195,7 @@ def test_a_potential_pickles_without_its_caches():
 def test_bad_arguments_and_missing_abstraction():
     with pytest.raises(BadInputError, match="unknown heuristic 'h-foo'"):
         HeuristicPotential("h-foo")
-    with pytest.raises(BadInputError, match="learner's discount"):
+    with pytest.raises(BadInputError, match="a discount in"):
         HeuristicPotential("h-star", gamma=1.0)
     with pytest.raises(PotentialError, match="need the context's abstraction"):
         HeuristicPotential()(ShapingContext(obs=None, progress=0, t=0, subgoals=(frozenset(),)))
@@ -212,3 +212,42 @@ def test_shaped_maze_reach_environment(potential):
         *_, info = env.step(np.array([0.0, 1.0], np.float32))
         assert math.isfinite(info["potential"]) and math.isfinite(info["shaping"])
     env.close()
+
+
+@pytest.mark.parametrize("gamma", [0.9, 0.99])
+def test_discounted_potentials_take_the_learners_discount_from_the_wrapper(gamma):
+    """h-star-discounted shaped for a learner with γ is −(1 − γ^h)/(1 − γ^h0) with that γ."""
+    env = gymnasium.make(
+        "planshape/MazeReach-v1",
+        reward="shaped",
+        potential="h-star-discounted",
+        model="grid",
+        gamma=gamma,
+    )
+    obs, info = env.reset(seed=0)
+    wrapper = env
+    while not hasattr(wrapper, "shaping_gamma"):
+        wrapper = wrapper.env
+    assert wrapper.potential.gamma == gamma
+    fixed = HeuristicPotential("h-star", gamma=gamma).rescaled(wrapper.potential.scale)
+    ctx = ShapingContext(
+        obs=obs,
+        progress=0,
+        t=0,
+        subgoals=wrapper.progress.subgoals,
+        geometry=wrapper.geometry,
+        abstraction=wrapper.progress.abstraction,
+    )
+    assert info["potential"] == fixed(ctx)
+    for _ in range(30):
+        obs, *_, info = env.step(np.array([1.0, 0.3], np.float32))
+    ctx.obs, ctx.progress = obs, info["progress"]
+    assert info["potential"] == fixed(ctx)
+
+
+def test_a_learner_discount_potential_needs_a_discount_below_one():
+    with pytest.raises(BadInputError, match="below 1"):
+        make_potential("h-star-discounted").for_discount(1.0)
+    with pytest.raises(PotentialError, match="for_discount"):
+        make_potential("h-star-discounted")(maze().ctx(centre((0, 5))))
+    assert make_potential("h-star", gamma=0.5).for_discount(0.9).gamma == 0.5
