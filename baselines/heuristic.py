@@ -64,7 +64,7 @@ from typing import Any
 
 import numpy as np
 
-from planshape.abstraction import AtomEvaluator
+from planshape.abstraction import Abstraction, AtomEvaluator
 from planshape.errors import BadInputError, PotentialError
 from planshape.planning.grounding import ground_task
 from planshape.planning.relaxed import h_add, h_ff, h_max
@@ -123,16 +123,15 @@ class ModelBinding:
     process: the grounded task, a bit per classified fluent atom, the plan's initial state and
     (built on first use) the exact goal distances."""
 
-    def __init__(self, abstraction: Any, subgoals: Any, max_states: int = DEFAULT_MAX_STATES):
+    def __init__(
+        self, abstraction: Abstraction, subgoals: Any, max_states: int = DEFAULT_MAX_STATES
+    ):
         self.abstraction = abstraction
         self.ground = ground_task(abstraction.task)
         index = self.ground.index
         # only the atoms some operator or the goal mentions matter
-        classifiers = getattr(abstraction, "classifiers", None)
-        atoms = [a for a in getattr(abstraction, "fluent_atoms", ()) if a in index]
-        self._classify = (
-            AtomEvaluator(atoms, classifiers) if classifiers is not None and atoms else None
-        )
+        atoms = [a for a in abstraction.fluent_atoms if a in index]
+        self._classify = AtomEvaluator(atoms, abstraction.classifiers) if atoms else None
         self.column_bits = [1 << index[a] for a in atoms]
         initial = getattr(subgoals, "fluents", None)
         self.initial = self.ground.mask(initial[0] if initial else subgoals[0])
@@ -155,7 +154,7 @@ class ModelBinding:
 
     def state_key(self, ctx: ShapingContext) -> tuple[Any, Callable[[], int]]:
         """A cheap cache key for ŝ of ``ctx`` and a function that builds its bit mask."""
-        if ctx._abstract_state is not None or self._classify is None:
+        if ctx.atoms is not None or self._classify is None:
             mask = self.ground.mask(ctx.abstract_state)
             return mask, lambda: mask
         columns = frozenset(self._classify.holding(ctx.obs))
@@ -176,7 +175,7 @@ _BINDINGS: dict[tuple[int, int, int], tuple[Any, Any, ModelBinding]] = {}
 def bind_model(ctx: ShapingContext, max_states: int = DEFAULT_MAX_STATES) -> ModelBinding:
     """The :class:`ModelBinding` of ``ctx``'s abstraction and plan (made once per process)."""
     abstraction = ctx.abstraction
-    if abstraction is None or not hasattr(abstraction, "task"):
+    if abstraction is None:
         raise PotentialError(
             "heuristic potentials evaluate h on the abstract state and need the context's "
             "abstraction (its PDDL task and classifiers); the shaping wrapper and the "

@@ -33,7 +33,7 @@ from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any, ClassVar, Generic, Protocol, TypeVar
+from typing import TYPE_CHECKING, Any, ClassVar, Generic, Protocol, TypeVar
 
 import numpy as np
 
@@ -45,6 +45,9 @@ from planshape.errors import (
     UnknownIdError,
 )
 from planshape.planning.model import AbstractState
+
+if TYPE_CHECKING:
+    from planshape.abstraction import Abstraction
 
 _Value = TypeVar("_Value")
 #: a potential specialized to one plan: (observation, progress) -> φ before scale
@@ -106,6 +109,10 @@ class Geometry(Protocol):
     ``plan-path``) need it when there is more than one entity.
     """
 
+    #: whether the entities' coordinates are positions in one frame (see above); a geometry
+    #: that does not set it is taken not to share one
+    shared_frame: bool
+
     def locate(self, subgoal: AbstractState) -> Mapping[str, np.ndarray]: ...
 
     def positions(self, obs: Any) -> Mapping[str, np.ndarray]: ...
@@ -121,7 +128,11 @@ class ShapingContext:
         t: the time index: the number of steps taken since ``reset`` (0 at reset).
         subgoals: Ŝ = [ŝ0 … ŝn], the plan's abstract states.
         geometry: the task's ``locate``/``positions`` hooks, when the task has coordinates.
-        abstraction: maps ``obs`` to its abstract state (see :attr:`abstract_state`).
+        abstraction: the task's classifiers and PDDL task, which map ``obs`` to its abstract
+            state (see :attr:`abstract_state`).
+        atoms: ŝ = Abstract(s), the atoms that hold in ``obs`` (static ones included), when
+            whoever builds the context already has them; otherwise None, and
+            :attr:`abstract_state` classifies ``obs`` on first use and stores them here.
     """
 
     obs: Any
@@ -129,8 +140,8 @@ class ShapingContext:
     t: int
     subgoals: Sequence[AbstractState]
     geometry: Geometry | None = None
-    abstraction: Any = None
-    _abstract_state: AbstractState | None = field(default=None, repr=False)
+    abstraction: Abstraction | None = None
+    atoms: AbstractState | None = field(default=None, repr=False)
 
     @property
     def final(self) -> int:
@@ -145,11 +156,11 @@ class ShapingContext:
     @property
     def abstract_state(self) -> AbstractState:
         """ŝ = Abstract(s), computed on first use only (all groundings are classified)."""
-        if self._abstract_state is None:
+        if self.atoms is None:
             if self.abstraction is None:
                 raise PotentialError("this context has no abstraction to compute ŝ from")
-            self._abstract_state = self.abstraction.abstract_state(self.obs)
-        return self._abstract_state
+            self.atoms = self.abstraction.abstract_state(self.obs)
+        return self.atoms
 
     def require_geometry(self, who: str) -> Geometry:
         if self.geometry is None:

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, SupportsFloat
+from typing import Any, ClassVar, SupportsFloat
 
 import gymnasium
 import gymnasium_robotics
@@ -282,6 +282,8 @@ class MazeGeometry:
 
     centres: Mapping[str, np.ndarray]
     at: str = "robot_at"
+    #: one entity, the ball's position in the maze's frame
+    shared_frame: ClassVar[bool] = True
 
     def locate(self, subgoal: AbstractState) -> dict[str, np.ndarray]:
         for atom in subgoal:

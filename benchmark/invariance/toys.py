@@ -139,6 +139,9 @@ class PointGeometry:
     """Geometry hooks for point-mass toys: ``obs[:2]`` is the ``"ee"`` position, and the
     ``robot_at`` atom of a subgoal names a region whose centre is the target."""
 
+    #: one entity, a position
+    shared_frame = True
+
     def __init__(self, centres: Mapping[str, np.ndarray]):
         self.centres = {name: np.asarray(c, float) for name, c in centres.items()}
 

@@ -160,7 +160,7 @@ def test_cached_values_equal_values_from_the_full_abstract_state():
                 subgoals=b.plan.subgoals,
                 geometry=b.model.geometry,
                 abstraction=b.abstraction,
-                _abstract_state=b.abstraction.abstract_state(obs),
+                atoms=b.abstraction.abstract_state(obs),
             )
             first = cached(b.ctx(obs))
             assert first == cached(b.ctx(obs)) == direct(given)
