@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from planshape.errors import ClassifierError, RegistrationError, UnknownIdError
+from planshape.errors import BadInputError, ClassifierError, RegistrationError, UnknownIdError
 from planshape.planning.model import AbstractState, Atom, PddlTask, format_atom
 
 Classifier = Callable[..., Any]
@@ -330,6 +330,6 @@ class Abstraction:
     def abstract_state(self, obs: Any) -> AbstractState:
         """ŝ = Abstract(s): the fluent atoms that hold, plus the static atoms of ``:init``."""
         if batch_shape(obs):
-            raise ValueError("abstract_state takes one observation; use classify_batch for many")
+            raise BadInputError("abstract_state takes one observation; use classify_batch for many")
         atoms = self.fluent_atoms
         return self.static_atoms | {atoms[i] for i in self._all.holding(obs)}

@@ -38,6 +38,7 @@ from typing import Any, Literal
 import numpy as np
 
 from planshape.abstraction import Abstraction, batch_shape
+from planshape.errors import BadInputError
 from planshape.planning.model import AbstractState
 
 SubgoalMatch = Literal["fluents", "exact"]
@@ -60,9 +61,9 @@ class PlanProgress:
         match: SubgoalMatch = "fluents",
     ):
         if match not in ("fluents", "exact"):
-            raise ValueError(f"match must be 'fluents' or 'exact', not {match!r}")
+            raise BadInputError(f"match must be 'fluents' or 'exact', not {match!r}")
         if not subgoals:
-            raise ValueError("a plan has at least one subgoal (its initial state)")
+            raise BadInputError("a plan has at least one subgoal (its initial state)")
         self.subgoals = subgoals
         self.abstraction = abstraction
         self.match = match

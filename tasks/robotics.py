@@ -233,7 +233,7 @@ def _as_dict(obs: Any) -> Mapping[str, Any]:
         return obs
     if isinstance(obs, np.ndarray) and obs.dtype == object and obs.ndim == 0:
         return obs.item()
-    raise TypeError(
+    raise BadInputError(
         f"expected one goal-environment observation (a dict with 'achieved_goal'), got "
         f"{type(obs).__name__}{getattr(obs, 'shape', '')}; batches of dict observations are "
         "not supported"

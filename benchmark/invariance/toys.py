@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from planshape.abstraction import Abstraction, Vectorized
-from planshape.errors import UnknownIdError
+from planshape.errors import RegistrationError, UnknownIdError
 from planshape.invariance.augment import AugmentedMDP, augment
 from planshape.invariance.mdp import TabularMDP
 from planshape.invariance.settings import Setting
@@ -128,7 +128,10 @@ def make_toy(name: str) -> ToyProblem:
         raise UnknownIdError("toy MDP", name, _TOYS, hint="`planshape check-invariance --list`")
     problem = load_reference(_TOYS[name][0])()
     if not isinstance(problem, ToyProblem):
-        raise TypeError(f"toy {name!r} entry point returned {type(problem).__name__}")
+        raise RegistrationError(
+            f"toy {name!r}: its entry point returned {type(problem).__name__}; it must return a "
+            "planshape.invariance.toys.ToyProblem"
+        )
     return problem
 
 
