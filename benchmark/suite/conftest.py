@@ -67,8 +67,12 @@ def bench(request: pytest.FixtureRequest) -> BenchSession:
 
 
 class ProgressLines:
-    """After each run: how many are done, the time spent and an estimate of the time left,
-    from the runs trained in this session (a run found in the store takes no time)."""
+    """After each run: how many are done, the time spent and an estimate of the time left.
+
+    The estimate scales the time spent by the estimated cost of the runs still to train over
+    that of the runs trained so far (:func:`planshape.estimate.run_seconds`: a 100k-step SAC
+    run costs ten times a PPO run of the same budget), so neither runs found in the store
+    (which take no time) nor the order of cheap and dear runs distort it."""
 
     def __init__(self, config: pytest.Config):
         self.config = config
@@ -76,9 +80,14 @@ class ProgressLines:
         self.total = 0
         self.done = 0
         self.skipped = 0
+        self.cost: dict[str, float] = {}
+        self.trained_cost = 0.0
+        self.finished_cost = 0.0
 
     def pytest_sessionstart(self, session: pytest.Session) -> None:
-        self.config.stash[BenchSession.KEY].prepare()
+        bench: BenchSession = self.config.stash[BenchSession.KEY]
+        bench.prepare()
+        self.cost = bench.estimated_seconds()
 
     @pytest.hookimpl(trylast=True)
     def pytest_collection_modifyitems(self, items: list[pytest.Item]) -> None:
@@ -88,17 +97,28 @@ class ProgressLines:
     def pytest_xdist_node_collection_finished(self, node, ids: list[str]) -> None:
         self.total = len(ids)  # with a process pool the controller collects nothing itself
 
+    @pytest.hookimpl(tryfirst=True)
+    def pytest_report_teststatus(self, report: pytest.TestReport, config: pytest.Config):
+        """No progress letter per run ("." or "s"): the run's own line says how it ended."""
+        if report.when == "call" or (report.when == "setup" and not report.passed):
+            return report.outcome, "", report.outcome.upper()
+        return None
+
     def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
         finished = report.when == "call" or (report.when == "setup" and not report.passed)
         if not finished:
             return
         self.done += 1
         elapsed = time.monotonic() - self.started
+        name = report.nodeid.split("[", 1)[-1].rstrip("]")
+        cost = self.cost.get(name, 1.0)
+        self.finished_cost += cost
         if report.skipped:  # already stored: takes no time, so it says nothing about the rest
             self.skipped += 1
-        trained = self.done - self.skipped
-        left = elapsed / trained * max(self.total - self.done, 0) if trained else 0.0
-        name = report.nodeid.split("[", 1)[-1].rstrip("]")
+        else:
+            self.trained_cost += cost
+        remaining = max(sum(self.cost.values()) - self.finished_cost, 0.0)
+        left = elapsed / self.trained_cost * remaining if self.trained_cost else 0.0
         outcome = "done" if report.passed else "stored" if report.skipped else report.outcome
         reporter = self.config.pluginmanager.get_plugin("terminalreporter")
         if reporter is not None:

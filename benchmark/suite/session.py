@@ -110,6 +110,16 @@ class BenchSession:
             self.profile.runs(tasks=self.tasks, seeds=self.seeds, extra_potentials=self.potentials)
         )
 
+    def estimated_seconds(self) -> dict[str, float]:
+        """Item id -> the estimated wall time of its run (:func:`planshape.estimate.run_seconds`;
+        a run without a measured rate counts its budget at the slowest known rate)."""
+        from planshape.estimate import TRAINING_RATE, run_seconds
+
+        slowest = min(TRAINING_RATE.values())
+        return {
+            self.item_id(k): run_seconds(k, self.profile) or k.budget / slowest for k in self.keys()
+        }
+
     @staticmethod
     def item_id(key: RunKey) -> str:
         name = key.task.split("/", 1)[-1]

@@ -57,7 +57,7 @@ def test_smoke_profile_with_a_submission_writes_the_leaderboard(smoke_out):
     assert shaped and all(abs(total - round(total)) < 1e-9 for total in totals)
 
 
-def test_resume_reruns_nothing_that_finished(smoke_out):
+def test_resume_reruns_nothing_that_finished(smoke_out, capfd):
     before = sorted(p.name for p in (smoke_out / "runs").glob("*.jsonl"))
     stamp = {p.name: p.stat().st_mtime_ns for p in (smoke_out / "runs").glob("*.jsonl")}
     (smoke_out / "runs" / ".deadbeef.killed.tmp").write_text('{"half": ')  # a killed write
@@ -79,6 +79,10 @@ def test_resume_reruns_nothing_that_finished(smoke_out):
     )
     after = sorted(p.name for p in (smoke_out / "runs").glob("*.jsonl"))
     assert after == before
+    lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
+    # stored runs take no time and say nothing about the rest: nothing is left to estimate
+    assert len(lines) == len(before) and all(" stored " in line for line in lines)
+    assert all(line.endswith("about 0m00s left") for line in lines)
     assert all(p.stat().st_mtime_ns == stamp[p.name] for p in (smoke_out / "runs").glob("*.jsonl"))
     assert not list((smoke_out / "runs").glob("*.tmp"))
 
