@@ -49,7 +49,7 @@ def pytest_arguments(args: argparse.Namespace) -> list[str]:
     ]
     for potential in args.potential:
         arguments += ["--potential", potential]
-    for option in ("tasks", "seeds", "address"):
+    for option in ("tasks", "seeds", "address", "tensorboard"):
         value = getattr(args, option)
         if value:
             arguments += [f"--{option}", value]
@@ -99,6 +99,11 @@ def _bench(parser: argparse.ArgumentParser) -> Handler:
     parser.add_argument("-k", help="pytest -k expression to select runs, e.g. 'PPO and grid'")
     parser.add_argument("--no-render", action="store_true", help="do not render the leaderboard")
     parser.add_argument(
+        "--tensorboard",
+        metavar="DIR",
+        help="also log every run it trains to TensorBoard under DIR (stored results unchanged)",
+    )
+    parser.add_argument(
         "--dry-run",
         action="store_true",
         help="print the selected runs and their estimated wall time; train and write nothing",
@@ -130,6 +135,10 @@ def run_bench(args: argparse.Namespace) -> int:
         )
     if args.executor != "ray" and args.address:
         raise BadInputError("--address applies only with --executor ray")
+    if args.tensorboard:
+        from planshape.tensorboard_logs import require_tensorboard
+
+        require_tensorboard()
     if args.dry_run:
         return _dry_run(args, profile)
     for reference in args.potential:

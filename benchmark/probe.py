@@ -45,8 +45,12 @@ from planshape.profiles import RunKey
 __all__ = ["checked_key", "probe"]
 
 
-def probe(key: RunKey, chunks: int = 8, eval_episodes: int = 10) -> list[dict[str, Any]]:
-    """Train ``key`` in ``chunks`` equal parts; one row of learner statistics after each."""
+def probe(
+    key: RunKey, chunks: int = 8, eval_episodes: int = 10, tensorboard: str | None = None
+) -> list[dict[str, Any]]:
+    """Train ``key`` in ``chunks`` equal parts; one row of learner statistics after each.
+    With ``tensorboard`` (a folder) the run also logs there (:mod:`planshape.tensorboard_logs`).
+    """
     import torch
     from stable_baselines3.common.callbacks import BaseCallback
 
@@ -69,11 +73,17 @@ def probe(key: RunKey, chunks: int = 8, eval_episodes: int = 10) -> list[dict[st
                     ended.append(info)
             return True
 
+    callbacks: list[Any] = [EpisodeEnds()]
+    if tensorboard is not None:
+        from planshape import tensorboard_logs
+
+        tensorboard_logs.attach(model, tensorboard, key)
+        callbacks.append(tensorboard_logs.shaping_callback(settings["gamma"]))
     rows = []
     plan_length = _plan_length(model)
     for chunk in range(chunks):
         target = key.budget * (chunk + 1) // chunks
-        model.learn(target - model.num_timesteps, reset_num_timesteps=False, callback=EpisodeEnds())
+        model.learn(target - model.num_timesteps, reset_num_timesteps=False, callback=callbacks)
         logged = model.logger.name_to_value
         scores = evaluate(model, eval_env, evaluation_episodes(key.task, eval_episodes))
         rows.append(
@@ -91,6 +101,8 @@ def probe(key: RunKey, chunks: int = 8, eval_episodes: int = 10) -> list[dict[st
             }
         )
         ended.clear()
+        if tensorboard is not None:
+            tensorboard_logs.record_evaluation(model, scores)
     model.get_env().close()
     eval_env.close()
     return rows
@@ -191,12 +203,19 @@ def _probe_command(parser: argparse.ArgumentParser) -> Handler:
     parser.add_argument("--chunks", type=int, default=8, help="checkpoints (default: 8)")
     parser.add_argument("--episodes", type=int, default=10, help="evaluation episodes")
     parser.add_argument("--json", action="store_true", help="print JSON rows")
+    parser.add_argument(
+        "--tensorboard", metavar="DIR", help="also log the run to TensorBoard under DIR"
+    )
 
     def run(args: argparse.Namespace) -> int:
         if args.episodes < 1:
             raise BadInputError("--seed must be ≥ 0, --budget and --episodes ≥ 1")
         key = checked_key(args.task, args.entry, args.algo, args.seed, args.budget)
-        rows = probe(key, args.chunks, args.episodes)
+        if args.tensorboard:
+            from planshape.tensorboard_logs import require_tensorboard
+
+            require_tensorboard()
+        rows = probe(key, args.chunks, args.episodes, args.tensorboard)
         print(json.dumps(rows) if args.json else format_rows(rows))
         return 0
 

@@ -321,14 +321,16 @@ def evaluate(
     }
 
 
-def execute(spec: RunSpec) -> list[dict[str, Any]]:
+def execute(spec: RunSpec, tensorboard: str | None = None) -> list[dict[str, Any]]:
     """Train and evaluate one run; return its tidy rows (one per evaluation point)."""
-    return train(spec)[1]
+    return train(spec, tensorboard)[1]
 
 
-def train(spec: RunSpec) -> tuple[Any, list[dict[str, Any]]]:
+def train(spec: RunSpec, tensorboard: str | None = None) -> tuple[Any, list[dict[str, Any]]]:
     """Train and evaluate one run: the trained learner and the run's rows (:func:`execute`,
-    which stores the rows; :mod:`planshape.videos` renders the learner's policy)."""
+    which stores the rows; :mod:`planshape.videos` renders the learner's policy). With
+    ``tensorboard`` (a folder), the run also logs there (:mod:`planshape.tensorboard_logs`),
+    which changes none of its numbers."""
     import torch
     from stable_baselines3.common.callbacks import BaseCallback
 
@@ -340,6 +342,12 @@ def train(spec: RunSpec) -> tuple[Any, list[dict[str, Any]]]:
     started = time.perf_counter()
     model = make_learner(key, spec.hyperparameters)
     eval_env = make_evaluation_env(key, spec.hyperparameters)
+    callbacks: list[Any] = []
+    if tensorboard is not None:
+        from planshape import tensorboard_logs
+
+        tensorboard_logs.attach(model, tensorboard, key)
+        callbacks.append(tensorboard_logs.shaping_callback(gamma))
 
     points: list[tuple[int, dict[str, float]]] = []
     eval_seconds = [0.0]
@@ -348,6 +356,10 @@ def train(spec: RunSpec) -> tuple[Any, list[dict[str, Any]]]:
     def record() -> None:
         t0 = time.perf_counter()
         points.append((int(model.num_timesteps), evaluate(model, eval_env, episodes)))
+        if tensorboard is not None:
+            from planshape import tensorboard_logs
+
+            tensorboard_logs.record_evaluation(model, points[-1][1])
         eval_seconds[0] += time.perf_counter() - t0
 
     class Evaluation(BaseCallback):
@@ -368,7 +380,7 @@ def train(spec: RunSpec) -> tuple[Any, list[dict[str, Any]]]:
             return True
 
     record()  # the untrained policy, at step 0
-    model.learn(key.budget, callback=Evaluation())
+    model.learn(key.budget, callback=[Evaluation(), *callbacks] if callbacks else Evaluation())
     record()
     wall = time.perf_counter() - started
     train_seconds = max(wall - eval_seconds[0], 1e-9)

@@ -38,6 +38,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     )
     group.addoption("--address", default=None, help="Ray cluster address (with --executor ray)")
     group.addoption("--no-render", action="store_true", help="do not render the leaderboard")
+    group.addoption("--tensorboard", default=None, help="also log each trained run to this folder")
 
 
 def pytest_configure(config: pytest.Config) -> None:

@@ -80,6 +80,8 @@ class BenchSession:
     executor: str = "local"
     address: str | None = None
     render: bool = True
+    #: a folder to log every trained run to (planshape.tensorboard_logs), or None
+    tensorboard: str | None = None
     collected: int = 0
     store: ResultStore = field(init=False)
     _checked: dict[str, str] = field(init=False, default_factory=dict)
@@ -101,6 +103,7 @@ class BenchSession:
             executor=option("--executor"),
             address=option("--address"),
             render=not option("--no-render"),
+            tensorboard=option("--tensorboard"),
         )
 
     # ---- selection ---------------------------------------------------------------------------
@@ -187,7 +190,10 @@ class BenchSession:
     def run(self, key: RunKey) -> list[dict[str, Any]]:
         spec = self.spec(key)
         run_id = spec.run_id  # before running: the identity of what was asked for
-        rows = execute(spec) if self.executor == "local" else _execute_on_ray(spec, self.address)
+        if self.executor == "local":
+            rows = execute(spec, self.tensorboard)
+        else:
+            rows = _execute_on_ray(spec, self.address, self.tensorboard)
         self.store.write(run_id, rows)
         return rows
 
@@ -212,7 +218,9 @@ def check_invariance(potential: str) -> str:
     return "preserved" if report.preserved else "violated"
 
 
-def _execute_on_ray(spec: RunSpec, address: str | None) -> list[dict[str, Any]]:
+def _execute_on_ray(
+    spec: RunSpec, address: str | None, tensorboard: str | None = None
+) -> list[dict[str, Any]]:
     """Run ``execute(spec)`` as a Ray task (one CPU): the same function, so the same numbers."""
     try:
         import ray
@@ -221,7 +229,7 @@ def _execute_on_ray(spec: RunSpec, address: str | None) -> list[dict[str, Any]]:
     if not ray.is_initialized():
         ray.init(address=address, log_to_driver=False, include_dashboard=False)
     remote = ray.remote(num_cpus=1)(execute)
-    return ray.get(remote.remote(spec))
+    return ray.get(remote.remote(spec, tensorboard))
 
 
 def end_with_parent() -> bool:
