@@ -287,9 +287,10 @@ def run_leaderboard(args: argparse.Namespace) -> int:
     if not rows:
         raise BadInputError(f"{args.out}: no stored results (runs/*.jsonl); run planshape bench")
     profile = get_profile(args.profile or _profile_of(args.out, rows))
-    render_leaderboard(rows, args.out, profile.header(rows))
+    shown = profile.shown(rows)
+    render_leaderboard(shown, args.out, profile.header(rows))
     if args.json:
-        print(json.dumps(json_ready(summarize(rows)), indent=2, sort_keys=True, allow_nan=False))
+        print(json.dumps(json_ready(summarize(shown)), indent=2, sort_keys=True, allow_nan=False))
     else:
-        print(summary_table(rows))
+        print(summary_table(shown))
     return 0

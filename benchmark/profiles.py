@@ -243,11 +243,21 @@ class Profile:
         command = self.archived or " ".join(
             ["planshape bench --profile", self.name, *(f"--potential {p}" for p in submitted)]
         )
+        stale = sorted({(str(r["run_id"]), int(r["budget"])) for r in rows if not self.shows(r)})
+        kept = (
+            [
+                f"{len(stale)} stored runs at budgets this profile no longer uses (e.g. "
+                f"runs/{stale[0][0]}.jsonl, {stale[0][1]:,} steps) stay in runs/ and are not "
+                "shown"
+            ]
+            if stale
+            else []
+        )
         return {
             "profile": self.name,
             "description": self.description,
             "command": command,
-            "caveats": list(self.caveats),
+            "caveats": [*self.caveats, *kept],
             "eval_every": self.eval_every,
             "eval_episodes": self.eval_episodes,
         }
@@ -255,6 +265,24 @@ class Profile:
     def budgets(self) -> dict[tuple[str, str], int]:
         """(task, algo) -> budget, for the leaderboard header."""
         return {(t, a): b.budgets[t] for b in self.blocks for t in b.tasks for a in b.algos}
+
+    def shows(self, row: Mapping[str, Any]) -> bool:
+        """Whether a stored row is one of this profile's cells as the profile is now: its task
+        and algorithm are in the profile at the row's budget. A run stored before a budget
+        changed stays in the store, but is not mixed into the cells of the new budget.
+
+        Example:
+            >>> smoke = PROFILES["smoke"]
+            >>> row = {"task": "planshape/Reach-v1", "algo": "PPO", "budget": 4096}
+            >>> smoke.shows(row), smoke.shows({**row, "budget": 2048})
+            (True, False)
+        """
+        return self.budgets().get((row["task"], row["algo"])) == int(row["budget"])
+
+    def shown(self, rows: Sequence[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
+        """The rows :meth:`shows` keeps."""
+        budgets = self.budgets()
+        return [r for r in rows if budgets.get((r["task"], r["algo"])) == int(r["budget"])]
 
 
 SMOKE = Profile(

@@ -205,9 +205,10 @@ class BenchSession:
         rows = load_rows(self.out) if self.store.runs.is_dir() else []
         if not rows:
             return ""
+        shown = self.profile.shown(rows)
         if self.render:
-            render_leaderboard(rows, self.out, self.profile.header(rows))
-        return summary_table(rows)
+            render_leaderboard(shown, self.out, self.profile.header(rows))
+        return summary_table(shown)
 
 
 def check_invariance(potential: str) -> str:

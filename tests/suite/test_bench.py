@@ -138,3 +138,26 @@ def test_a_run_keeps_its_identity_through_training():
     before = spec.run_id
     rows = execute(spec)
     assert spec.run_id == before == rows[0]["run_id"]
+
+
+def test_runs_at_a_budget_the_profile_no_longer_uses_are_kept_but_not_shown(smoke_out, tmp_path):
+    """After a budget changes, the runs stored at the old one stay in the store and out of the
+    cells: the leaderboard names them in its caveats instead of mixing two budgets."""
+    import shutil
+
+    out = tmp_path / "board"
+    shutil.copytree(smoke_out / "runs", out / "runs")
+    source = next(p for p in sorted((out / "runs").glob("*.jsonl")) if '"sparse"' in p.read_text())
+    rows = [json.loads(line) for line in source.read_text().splitlines()]
+    for row in rows:
+        row["budget"], row["run_id"], row["seed"] = 2048, "0000old0budget00", 7
+    (out / "runs" / "0000old0budget00.jsonl").write_text(
+        "".join(json.dumps(row) + "\n" for row in rows)
+    )
+    assert main(["leaderboard", "--out", str(out), "--json"]) == 0
+    board = (out / "LEADERBOARD.md").read_text()
+    assert "1 stored runs at budgets this profile no longer uses" in board
+    assert "runs/0000old0budget00.jsonl, 2,048 steps" in board
+    summary = json.loads((out / "summary.json").read_text())
+    sparse = [c for c in summary["per_task"] if c["entry"] == "sparse"]
+    assert [(c["n_seeds"], c["budget"]) for c in sparse] == [(1, 4096)]
