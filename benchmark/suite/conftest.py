@@ -71,7 +71,7 @@ class ProgressLines:
     """After each run: how many are done, the time spent and an estimate of the time left.
 
     The estimate scales the time spent by the estimated cost of the runs still to train over
-    that of the runs trained so far (:func:`planshape.estimate.run_seconds`: a 100k-step SAC
+    that of the runs trained so far (before the first one finishes, it is the estimate itself) (:func:`planshape.estimate.run_seconds`: a 100k-step SAC
     run costs ten times a PPO run of the same budget), so neither runs found in the store
     (which take no time) nor the order of cheap and dear runs distort it."""
 
@@ -119,7 +119,11 @@ class ProgressLines:
         else:
             self.trained_cost += cost
         remaining = max(sum(self.cost.values()) - self.finished_cost, 0.0)
-        left = elapsed / self.trained_cost * remaining if self.trained_cost else 0.0
+        if self.trained_cost:
+            left = elapsed / self.trained_cost * remaining
+        else:  # nothing trained yet: the estimate itself, for this many parallel runs
+            workers = getattr(self.config.option, "numprocesses", None) or 1
+            left = remaining / int(workers)
         outcome = "done" if report.passed else "stored" if report.skipped else report.outcome
         reporter = self.config.pluginmanager.get_plugin("terminalreporter")
         if reporter is not None:
