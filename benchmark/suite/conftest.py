@@ -93,11 +93,17 @@ class ProgressLines:
 
     @pytest.hookimpl(trylast=True)
     def pytest_collection_modifyitems(self, items: list[pytest.Item]) -> None:
-        self.total = len(items)
+        self._selected([item.nodeid for item in items])
 
     @pytest.hookimpl(optionalhook=True)
     def pytest_xdist_node_collection_finished(self, node, ids: list[str]) -> None:
-        self.total = len(ids)  # with a process pool the controller collects nothing itself
+        self._selected(ids)  # with a process pool the controller collects nothing itself
+
+    def _selected(self, nodeids: list[str]) -> None:
+        """Count and cost only the runs selected (``-k`` deselects some of the profile's)."""
+        self.total = len(nodeids)
+        names = {_run_name(nodeid) for nodeid in nodeids}
+        self.cost = {name: cost for name, cost in self.cost.items() if name in names}
 
     @pytest.hookimpl(tryfirst=True)
     def pytest_report_teststatus(self, report: pytest.TestReport, config: pytest.Config):
@@ -112,8 +118,8 @@ class ProgressLines:
             return
         self.done += 1
         elapsed = time.monotonic() - self.started
-        name = report.nodeid.split("[", 1)[-1].rstrip("]")
-        cost = self.cost.get(name, 1.0)
+        name = _run_name(report.nodeid)
+        cost = self.cost.get(name, 0.0)  # 0 for a run found stored
         self.finished_cost += cost
         if report.skipped:  # already stored: takes no time, so it says nothing about the rest
             self.skipped += 1
@@ -140,6 +146,11 @@ class ProgressLines:
         if text:
             terminalreporter.write_sep("=", "planshape leaderboard")
             terminalreporter.write_line(text)
+
+
+def _run_name(nodeid: str) -> str:
+    """The run's item id (``Reach-v1|sparse|PPO|seed0``) of a test node id."""
+    return nodeid.split("[", 1)[-1].rstrip("]")
 
 
 def _clock(seconds: float) -> str:

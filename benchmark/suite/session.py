@@ -115,12 +115,16 @@ class BenchSession:
 
     def estimated_seconds(self) -> dict[str, float]:
         """Item id -> the estimated wall time of its run (:func:`planshape.estimate.run_seconds`;
-        a run without a measured rate counts its budget at the slowest known rate)."""
+        a run without a measured rate counts its budget at the slowest known rate); 0 for a
+        run already stored, which takes no time."""
         from planshape.estimate import TRAINING_RATE, run_seconds
 
         slowest = min(TRAINING_RATE.values())
         return {
-            self.item_id(k): run_seconds(k, self.profile) or k.budget / slowest for k in self.keys()
+            self.item_id(k): (
+                0.0 if self.is_done(k) else run_seconds(k, self.profile) or k.budget / slowest
+            )
+            for k in self.keys()
         }
 
     @staticmethod

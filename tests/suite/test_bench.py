@@ -58,6 +58,7 @@ def test_smoke_profile_with_a_submission_writes_the_leaderboard(smoke_out):
 
 
 def test_resume_reruns_nothing_that_finished(smoke_out, capfd):
+    capfd.readouterr()  # what the fixture's first benchmark printed
     before = sorted(p.name for p in (smoke_out / "runs").glob("*.jsonl"))
     stamp = {p.name: p.stat().st_mtime_ns for p in (smoke_out / "runs").glob("*.jsonl")}
     (smoke_out / "runs" / ".deadbeef.killed.tmp").write_text('{"half": ')  # a killed write
@@ -81,8 +82,8 @@ def test_resume_reruns_nothing_that_finished(smoke_out, capfd):
     assert after == before
     lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
     # stored runs take no time and say nothing about the rest: nothing is left to estimate
-    assert len(lines) == len(before) and all(" stored " in line for line in lines)
-    assert all(line.endswith("about 0m00s left") for line in lines)
+    assert len(lines) == len(before) and all(" stored " in line for line in lines), lines
+    assert all(line.endswith("about 0m00s left") for line in lines), lines
     assert all(p.stat().st_mtime_ns == stamp[p.name] for p in (smoke_out / "runs").glob("*.jsonl"))
     assert not list((smoke_out / "runs").glob("*.tmp"))
 
@@ -161,3 +162,15 @@ def test_runs_at_a_budget_the_profile_no_longer_uses_are_kept_but_not_shown(smok
     summary = json.loads((out / "summary.json").read_text())
     sparse = [c for c in summary["per_task"] if c["entry"] == "sparse"]
     assert [(c["n_seeds"], c["budget"]) for c in sparse] == [(1, 4096)]
+
+
+def test_a_profile_with_runs_missing_says_it_is_partial(smoke_out, tmp_path):
+    import shutil
+
+    out = tmp_path / "board"
+    shutil.copytree(smoke_out / "runs", out / "runs")
+    next(p for p in (out / "runs").glob("*.jsonl") if '"dense"' in p.read_text()).unlink()
+    assert main(["leaderboard", "--out", str(out), "--json"]) == 0
+    assert "partial: 2 of the profile's 3 runs are stored" in (out / "LEADERBOARD.md").read_text()
+    assert main(["leaderboard", "--out", str(smoke_out), "--json"]) == 0
+    assert "partial" not in (smoke_out / "LEADERBOARD.md").read_text()
