@@ -118,6 +118,9 @@ class Polyline:
             (a.tolist(), (b - a).tolist(), float(n * n), float(n), float(rest))
             for a, b, n, rest in zip(self.points[:-1], self.points[1:], lengths, after, strict=True)
         ]
+        # last segment first: the length after a segment only grows from there, and it bounds
+        # the segment's value from below, so the search stops once it reaches the best value
+        self._backwards = self._segments[::-1]
         self._first = self.points[0].tolist()
 
     def rest(self, x: Any) -> float:
@@ -132,7 +135,9 @@ class Polyline:
             return self._rest_any(np.asarray(x, float))
         px, py = x
         best = math.inf
-        for (ax, ay), (dx, dy), squared, length, after in self._segments:
+        for (ax, ay), (dx, dy), squared, length, after in self._backwards:
+            if after >= best:  # this segment and every earlier one: value ≥ after ≥ best
+                break
             ox, oy = px - ax, py - ay
             t = (ox * dx + oy * dy) / squared if squared else 0.0
             t = 0.0 if t < 0.0 else 1.0 if t > 1.0 else t

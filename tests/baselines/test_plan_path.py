@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import gymnasium
 import numpy as np
 import pytest
@@ -107,3 +109,28 @@ def test_no_place_for_the_last_entity_is_a_clear_error():
     ctx = ShapingContext(np.zeros(2), 0, 0, [frozenset(), frozenset()], geometry)
     with pytest.raises(PotentialError, match="plan-path.*places 'ee'"):
         make_potential("plan-path")(ctx)
+
+
+def test_rest_stops_early_but_equals_the_minimum_over_every_segment():
+    """The search stops once the length after a segment reaches the best value found; the
+    result must be the exact minimum over all segments (stored runs depend on its bits)."""
+    rng = np.random.default_rng(0)
+    points = np.cumsum(rng.uniform(-0.05, 0.05, (30, 2)), axis=0)
+    path = Polyline(points)
+    for x in rng.uniform(-0.3, 0.3, (500, 2)).tolist():
+        every = min(
+            math.hypot(
+                x[0] - ax - t * dx,
+                x[1] - ay - t * dy,
+            )
+            + (1.0 - t) * length
+            + after
+            for (ax, ay), (dx, dy), squared, length, after in path._segments
+            for t in [
+                min(
+                    max(((x[0] - ax) * dx + (x[1] - ay) * dy) / squared if squared else 0.0, 0.0),
+                    1.0,
+                )
+            ]
+        )
+        assert path.rest(x) == every
