@@ -174,3 +174,16 @@ def test_a_profile_with_runs_missing_says_it_is_partial(smoke_out, tmp_path):
     assert "partial: 2 of the profile's 3 runs are stored" in (out / "LEADERBOARD.md").read_text()
     assert main(["leaderboard", "--out", str(smoke_out), "--json"]) == 0
     assert "partial" not in (smoke_out / "LEADERBOARD.md").read_text()
+
+
+def test_a_k_selection_counts_and_estimates_only_its_own_runs(tmp_path, capfd):
+    out = tmp_path / "one"
+    assert (
+        main(
+            ["bench", "--profile", "smoke", "--out", str(out), "--workers", "1", "-k", "sparse"]
+        )
+        == 0
+    )
+    lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
+    assert len(lines) == 1 and lines[0].startswith("[1/1] done")
+    assert lines[0].endswith("about 0m00s left")
