@@ -13,6 +13,9 @@ Two kinds of potential pass that test while changing what a learner optimizes:
   caps a time-dependent φ's time index at the horizon H, which hides a φ ∝ c^t with c·γ > 1.
   :func:`growth` evaluates φ at t = H, 2H, … 32H and reports a γ^t·max|φ| that still grows.
 
+A third probe, :func:`step_function_mismatch`, compares the step function a potential gives the
+shaping wrapper (``specialize``) with the table, so that what trains is what was checked.
+
 Each returns ``""`` when nothing was found, else one sentence with the counterexample.
 
 Example:
@@ -32,7 +35,7 @@ import numpy as np
 from planshape.invariance.augment import AugmentedMDP
 from planshape.potentials import Potential
 
-__all__ = ["growth", "hidden_state"]
+__all__ = ["growth", "hidden_state", "step_function_mismatch"]
 
 #: simulated episodes, states re-evaluated in a shuffled order, and the probes' random seed
 EPISODES, SHUFFLED, SEED = 8, 512, 0
@@ -91,6 +94,30 @@ def hidden_state(
             np.isclose(a, b, rtol=1e-9, atol=1e-12) and np.isclose(a, c, rtol=1e-9, atol=1e-12)
         ):
             return _inconsistent(potential, aug, x, t, (a, b, c), table is not None and not dynamic)
+    return ""
+
+
+def step_function_mismatch(potential: Potential, aug: AugmentedMDP, table: np.ndarray) -> str:
+    """The first augmented state where the potential's step function (what the shaping wrapper
+    trains with, :meth:`planshape.potentials.Potential.specialize`) disagrees with ``table``,
+    φ(·, 0) as the checker tabulated it from ``potential(ctx)``; ``""`` if none does or the
+    potential has no step function."""
+    reachable = np.flatnonzero(aug.reachable & ~aug.mdp.terminal)
+    if not reachable.size:
+        return ""
+    step = potential.step_function(aug.context(int(reachable[0]), 0))
+    if step is None:
+        return ""
+    for x in reachable.tolist():
+        fast = potential.scale * step(aug.observation(x), int(aug.plan_progress[x]))
+        if not _same(fast, table[x]):
+            return (
+                f"potential {potential.name!r}: its specialize() gives φ = {fast:.6g} at state "
+                f"{int(aug.state[x])} (progress {int(aug.plan_progress[x])}) where potential() "
+                f"gives {table[x]:.6g}; the shaping wrapper trains with specialize(), so it "
+                "would train another φ than the one checked. Make them agree, or remove "
+                "specialize"
+            )
     return ""
 
 

@@ -36,7 +36,7 @@ from weakref import WeakKeyDictionary
 import numpy as np
 
 from planshape.invariance.augment import AugmentedMDP
-from planshape.invariance.probes import growth, hidden_state
+from planshape.invariance.probes import growth, hidden_state, step_function_mismatch
 from planshape.invariance.settings import Setting
 from planshape.potentials import Potential, make_potential
 
@@ -122,7 +122,7 @@ class PotentialBased(Shaping):
         if setting.horizon not in probed:  # the same for every setting of that horizon
             probed[setting.horizon] = hidden_state(
                 self.potential, aug, setting.horizon, self._table(aug, 0)
-            )
+            ) or step_function_mismatch(self.potential, aug, self._table(aug, 0))
         found = probed[setting.horizon]
         if not found and setting.kind == "discounted":
             found = growth(self.potential, aug, setting.gamma, setting.horizon)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from planshape.invariance import check_potential
 from planshape.invariance.check import check_shaping
 from planshape.invariance.controls import (
     CONTROLS,
@@ -16,7 +17,7 @@ from planshape.invariance.controls import (
 from planshape.invariance.shaped import PotentialBased, Step
 from planshape.invariance.solve import value_iteration
 from planshape.invariance.toys import make_toy
-from planshape.potentials import make_potential
+from planshape.potentials import Potential, make_potential
 
 
 @pytest.mark.parametrize("control", CONTROLS, ids=lambda c: c.name)
@@ -94,3 +95,25 @@ def test_the_corrected_controls_pass(toy, shaping):
     toy_problem = make_toy(toy)
     for preset in ("discounted", "finite-horizon", "undiscounted"):
         assert check_shaping(toy_problem, shaping(), toy_problem.setting(preset)).preserved
+
+
+class FastButWrong(Potential):
+    """plan-based whose step function (what the wrapper would train with) counts double."""
+
+    def potential(self, ctx):
+        return ctx.progress / ctx.final
+
+    def specialize(self, ctx):
+        final = ctx.final
+        return lambda obs, progress: 2 * progress / final
+
+
+def test_a_step_function_that_disagrees_with_the_potential_is_caught():
+    report = check_potential(FastButWrong, mdps=["reach"], settings=["discounted"])
+    assert not report.preserved
+    (verdict,) = report.verdicts
+    assert "specialize() gives" in verdict.not_a_potential
+    # the same potential without the disagreeing step function passes
+    assert check_potential(
+        make_potential("plan-based"), mdps=["reach"], settings=["discounted"]
+    ).preserved
