@@ -179,9 +179,7 @@ def test_a_profile_with_runs_missing_says_it_is_partial(smoke_out, tmp_path):
 def test_a_k_selection_counts_and_estimates_only_its_own_runs(tmp_path, capfd):
     out = tmp_path / "one"
     assert (
-        main(
-            ["bench", "--profile", "smoke", "--out", str(out), "--workers", "1", "-k", "sparse"]
-        )
+        main(["bench", "--profile", "smoke", "--out", str(out), "--workers", "1", "-k", "sparse"])
         == 0
     )
     lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
