@@ -1,15 +1,3 @@
-#: SBX-SAC on the v1 tasks (train_freq 4 × 4 gradient steps), from the same kind of curves
-#: every 10,000 steps (``planshape probe TASK ENTRY --algo SBX-SAC --chunks …``), seeds 0-4:
-#:
-#: * Push 150,000: dense's deterministic policy succeeds on seeds 0-3 at every point from
-#:   120,000 to 250,000 (first success at 100k, 110k, 50k, 30k; training success 0.94-1.00 at
-#:   120k, 1.00 from 150k); seed 4 never succeeds up to 250,000 (training success 0.00 at every
-#:   point). So dense is 4/5 = 0.8 from 120,000 on and the rule holds at 150,000 with 30k of
-#:   margin; at 100,000 (the previous budget) it was 3/5, as the stored runs show.
-#: * Reach 100,000 (not yet confirmed): with train_freq 1, dense succeeded from 80,000 on
-#:   seed 0; with 4 × 4, dense succeeds from 60,000 on seed 0 and from 80,000 on seed 1, and
-#:   seed 2 not by 150,000 (training success 0.02 there); seeds 3 and 4 are the next probe.
-#: * MazeReach 60,000: not yet measured; the plan-distance curve is the next probe.
 """Benchmark profiles: which runs make up a benchmark, with their fixed budgets.
 
 A profile is a list of blocks; a block is a grid of tasks × reward entries × algorithms ×
@@ -255,10 +243,19 @@ class Profile:
         command = self.archived or " ".join(
             ["planshape bench --profile", self.name, *(f"--potential {p}" for p in submitted)]
         )
-        stale = sorted({(str(r["run_id"]), int(r["budget"])) for r in rows if not self.shows(r)})
+        current = self._current(rows)
+        stale = sorted(
+            {
+                (str(r["run_id"]), int(r["budget"]))
+                for r, ok in zip(rows, current, strict=True)
+                if not ok
+            }
+        )
         planned = {(k.task, k.entry, k.algo, k.seed) for k in self.runs()}
         stored = {
-            (r["task"], r["entry"], r["algo"], int(r["seed"])) for r in rows if self.shows(r)
+            (r["task"], r["entry"], r["algo"], int(r["seed"]))
+            for r, ok in zip(rows, current, strict=True)
+            if ok
         } & planned
         partial = (
             [
@@ -301,12 +298,16 @@ class Profile:
             >>> smoke.shows(row), smoke.shows({**row, "budget": 2048})
             (True, False)
         """
-        return self.budgets().get((row["task"], row["algo"])) == int(row["budget"])
+        return self._current([row])[0]
 
     def shown(self, rows: Sequence[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
         """The rows :meth:`shows` keeps."""
+        return [r for r, ok in zip(rows, self._current(rows), strict=True) if ok]
+
+    def _current(self, rows: Sequence[Mapping[str, Any]]) -> list[bool]:
+        """:meth:`shows` of every row, with the budget table built once."""
         budgets = self.budgets()
-        return [r for r in rows if budgets.get((r["task"], r["algo"])) == int(r["budget"])]
+        return [budgets.get((r["task"], r["algo"])) == int(r["budget"]) for r in rows]
 
 
 SMOKE = Profile(
@@ -348,15 +349,16 @@ _V0_SAC_STEPS = {"Reach": 10_000, "Push": 15_000, "MazeReach": 15_000}
 #:   profile carries it, with that caveat.
 _PPO_STEPS = {"Reach": 240 * 1024, "Push": 320 * 1024, "MazeReach": 120 * 1024}
 #: SBX-SAC on the v1 tasks (train_freq 4 × 4 gradient steps), from the same kind of curves
-#: every 10,000 steps, seeds 0-4 on push:
+#: every 10,000 steps (``planshape probe TASK ENTRY --algo SBX-SAC --chunks …``), seeds 0-4:
 #:
-#: * Push 100,000: dense succeeds late and unreliably. With train_freq 1, seeds 0-4 at 50,000:
-#:   seeds 0 and 2 succeed (from 40,000 and 50,000), seeds 1 and 3 never move the cylinder
-#:   before 40,000; with 4 × 4, seed 0 succeeds at 100,000 only (training success 0.02),
-#:   seed 1 at 70,000 but not at 100,000 (training success 0.69). A budget at which dense
-#:   reaches 0.8 is above 100,000 and not yet measured; the stored runs say how far short it is.
-#: * Reach 100,000: dense succeeds from 80,000 on seed 0 (training success 0.52 there, 0.99 at
-#:   100,000), measured with train_freq 1.
+#: * Push 150,000: dense's deterministic policy succeeds on seeds 0-3 at every point from
+#:   120,000 to 250,000 (first success at 100k, 110k, 50k, 30k; training success 0.94-1.00 at
+#:   120k, 1.00 from 150k); seed 4 never succeeds up to 250,000 (training success 0.00 at every
+#:   point). So dense is 4/5 = 0.8 from 120,000 on and the rule holds at 150,000 with 30k of
+#:   margin; at 100,000 (the previous budget) it was 3/5, as the stored runs show.
+#: * Reach 100,000 (not yet confirmed): with train_freq 1, dense succeeded from 80,000 on
+#:   seed 0; with 4 × 4, dense succeeds from 60,000 on seed 0 and from 80,000 on seed 1, and
+#:   seed 2 not by 150,000 (training success 0.02 there); seeds 3 and 4 are the next probe.
 #: * MazeReach 60,000: not yet measured; the plan-distance curve is the next probe.
 _SAC_STEPS = {"Reach": 100_000, "Push": 150_000, "MazeReach": 60_000}
 

@@ -343,11 +343,12 @@ def train(spec: RunSpec, tensorboard: str | None = None) -> tuple[Any, list[dict
     model = make_learner(key, spec.hyperparameters)
     eval_env = make_evaluation_env(key, spec.hyperparameters)
     callbacks: list[Any] = []
+    logs = None
     if tensorboard is not None:
-        from planshape import tensorboard_logs
+        from planshape import tensorboard_logs as logs
 
-        tensorboard_logs.attach(model, tensorboard, key)
-        callbacks.append(tensorboard_logs.shaping_callback(gamma))
+        logs.attach(model, tensorboard, key)
+        callbacks.append(logs.shaping_callback(gamma))
 
     points: list[tuple[int, dict[str, float]]] = []
     eval_seconds = [0.0]
@@ -356,10 +357,8 @@ def train(spec: RunSpec, tensorboard: str | None = None) -> tuple[Any, list[dict
     def record() -> None:
         t0 = time.perf_counter()
         points.append((int(model.num_timesteps), evaluate(model, eval_env, episodes)))
-        if tensorboard is not None:
-            from planshape import tensorboard_logs
-
-            tensorboard_logs.record_evaluation(model, points[-1][1])
+        if logs is not None:
+            logs.record_evaluation(model, points[-1][1])
         eval_seconds[0] += time.perf_counter() - t0
 
     class Evaluation(BaseCallback):

@@ -91,7 +91,7 @@ class PotentialShaping(gymnasium.Wrapper):
         self._phi_prev = 0.0
         # the potential specialized to the current plan (Potential.specialize), and for what
         self._step_phi: StepPotential | None = None
-        self._specialized_for: tuple[Any, ...] = ()
+        self._specialized_for: tuple[Any, ...] = (None, None, None)
 
     def _context(self, obs: Any) -> ShapingContext:
         return ShapingContext(
@@ -116,9 +116,7 @@ class PotentialShaping(gymnasium.Wrapper):
     def _specialize(self, obs: Any) -> None:
         """Fetch the potential's per-plan step function when the plan or potential changed."""
         key = (self.potential, self.progress, self.geometry)
-        if len(key) != len(self._specialized_for) or any(
-            a is not b for a, b in zip(key, self._specialized_for, strict=True)
-        ):
+        if any(a is not b for a, b in zip(key, self._specialized_for, strict=True)):
             self._step_phi = self.potential.step_function(self._context(obs))
             self._specialized_for = key
 
