@@ -3,7 +3,7 @@
 One flat list of registrations; nothing is imported until a potential is made.
 """
 
-from planshape.potentials import register_potential
+from planshape.shaping.potentials import register_potential
 
 # ---- the source paper (Section 4.1) ---------------------------------------------------------
 register_potential("plan-based", "planshape.baselines.paper:PlanBased")

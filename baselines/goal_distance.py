@@ -18,7 +18,7 @@ plan adds over the hand-crafted distance, and what keeping the optimal policy co
 dense reward itself (which changes the task).
 
 Example:
-    >>> from planshape.potentials import ShapingContext
+    >>> from planshape.shaping.potentials import ShapingContext
     >>> from planshape.invariance.toys import PointGeometry
     >>> geometry = PointGeometry({"a": (0, 0), "b": (0, 2), "c": (1, 2)})
     >>> subgoals = [frozenset({("robot_at", p)}) for p in "abc"]
@@ -37,7 +37,7 @@ import numpy as np
 
 from planshape.baselines.plan_path import PlanPath, Polyline, chain_distance, chained_entities
 from planshape.errors import PotentialError
-from planshape.potentials import Geometry
+from planshape.shaping.potentials import Geometry
 
 __all__ = ["GoalDistance", "chain_distance", "chained_entities"]
 

@@ -64,12 +64,12 @@ from typing import Any
 
 import numpy as np
 
-from planshape.abstraction import Abstraction, AtomEvaluator
 from planshape.errors import BadInputError, PotentialError
 from planshape.planning.grounding import ground_task
 from planshape.planning.relaxed import h_add, h_ff, h_max
 from planshape.planning.statespace import DEFAULT_MAX_STATES, GoalDistances
-from planshape.potentials import (
+from planshape.shaping.abstraction import Abstraction, AtomEvaluator
+from planshape.shaping.potentials import (
     IdentityCache,
     Potential,
     ShapingContext,
@@ -254,9 +254,9 @@ class HeuristicPotential(_BoundPotential):
             ``dead_end``).
 
     Example:
-        >>> from planshape.potentials import ShapingContext
+        >>> from planshape.shaping.potentials import ShapingContext
         >>> from planshape.planning import grid_pddl, parse_task
-        >>> from planshape.abstraction import Abstraction
+        >>> from planshape.shaping.abstraction import Abstraction
         >>> task = parse_task(*grid_pddl(1, 4, start=(0, 0), goal=(0, 3)).texts)
         >>> cells = {f"cell_0_{j}": float(j) for j in range(4)}
         >>> at = lambda obs, c: abs(obs[..., 0] - cells[c]) < 0.5

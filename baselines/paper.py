@@ -15,7 +15,7 @@ definition and are stated here, because the paper tuned "a constant multiplier" 
   than ``tolerance`` from its target is the one measured (φ = 0 when all are within).
 
 Example:
-    >>> from planshape.potentials import ShapingContext
+    >>> from planshape.shaping.potentials import ShapingContext
     >>> ctx = ShapingContext(obs=None, progress=2, t=3, subgoals=(frozenset(),) * 5)
     >>> PlanBased()(ctx), TimeVarying()(ctx)
     (0.5, 0.125)
@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from planshape.potentials import Potential, ShapingContext, StepPotential, point_distance
+from planshape.shaping.potentials import Potential, ShapingContext, StepPotential, point_distance
 
 
 def _fraction_done(ctx: ShapingContext, normalize: bool) -> float:

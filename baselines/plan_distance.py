@@ -25,7 +25,7 @@ subgoal. φ depends on (observation, max_idx) only, so the optimal policy of the
 is preserved (checked by ``planshape check-invariance --potential plan-distance``).
 
 Example:
-    >>> from planshape.potentials import ShapingContext
+    >>> from planshape.shaping.potentials import ShapingContext
     >>> from planshape.invariance.toys import PointGeometry
     >>> geometry = PointGeometry({"a": (0, 0), "b": (0, 2), "c": (1, 2)})
     >>> subgoals = [frozenset({("robot_at", p)}) for p in "abc"]
@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from planshape.potentials import (
+from planshape.shaping.potentials import (
     Geometry,
     IdentityCache,
     Potential,

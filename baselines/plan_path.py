@@ -26,7 +26,7 @@ the hand-crafted dense reward's distance; the plan contributes the path (around 
 walls; along the push plan's cells).
 
 Example:
-    >>> from planshape.potentials import ShapingContext
+    >>> from planshape.shaping.potentials import ShapingContext
     >>> from planshape.invariance.toys import PointGeometry
     >>> geometry = PointGeometry({"a": (0, 0), "b": (0, 2), "c": (1, 2)})
     >>> subgoals = [frozenset({("robot_at", p)}) for p in "abc"]
@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from planshape.errors import PotentialError
-from planshape.potentials import (
+from planshape.shaping.potentials import (
     Geometry,
     IdentityCache,
     Potential,

@@ -24,11 +24,11 @@ Setup = Callable[[argparse.ArgumentParser], Handler]
 #: every module that defines subcommands, in the order ``planshape --help`` lists them
 MODULES = (
     "planshape.cli",
-    "planshape.bench",
-    "planshape.catalog",
-    "planshape.probe",
-    "planshape.results",
-    "planshape.videos",
+    "planshape.harness.bench",
+    "planshape.harness.catalog",
+    "planshape.harness.probe",
+    "planshape.results.frame",
+    "planshape.results.videos",
     "planshape.invariance.command",
 )
 

@@ -28,7 +28,7 @@ from typing import Any
 
 from planshape.invariance.check import check_potential
 from planshape.invariance.verdict import RELATIVE_TOLERANCE, InvarianceReport
-from planshape.potentials import Potential
+from planshape.shaping.potentials import Potential
 
 __all__ = ["assert_policy_invariant"]
 

@@ -5,7 +5,8 @@ Entry points are strings, so nothing below imports a simulator until an environm
 ``planshape tasks`` lists the ids with their models, predicates and reward variants.
 """
 
-from planshape.registration import TaskSpec, register_task
+from planshape.invariance.registry import register_toy
+from planshape.shaping.registration import TaskSpec, register_task
 
 # ---- planar MuJoCo tasks of the source paper: reach, push, maze-reach --------------------------
 # v1 is the paper's code as its main.py ran it (reach behind a wall, push with a cylinder, the
@@ -311,8 +312,8 @@ register_task(
     TaskSpec(
         id="planshape/PointMaze_UMaze-v3",
         family="PointMaze",
-        env_entry_point="planshape.tasks.robotics:point_maze",
-        models={"grid": "planshape.tasks.robotics:umaze_grid"},
+        env_entry_point="planshape.tasks.point_maze:point_maze",
+        models={"grid": "planshape.tasks.point_maze:umaze_grid"},
         max_episode_steps=300,
         description="PointMaze UMaze: roll a ball round the U from its start cell to the goal",
         kwargs={"maze": "UMaze"},
@@ -322,8 +323,8 @@ register_task(
     TaskSpec(
         id="planshape/PointMaze_Medium-v3",
         family="PointMaze",
-        env_entry_point="planshape.tasks.robotics:point_maze",
-        models={"grid": "planshape.tasks.robotics:medium_grid"},
+        env_entry_point="planshape.tasks.point_maze:point_maze",
+        models={"grid": "planshape.tasks.point_maze:medium_grid"},
         max_episode_steps=600,
         description="PointMaze Medium: roll a ball across the 8x8 maze, corner to corner",
         kwargs={"maze": "Medium"},
@@ -333,8 +334,8 @@ register_task(
     TaskSpec(
         id="planshape/FetchReach-v4",
         family="FetchReach",
-        env_entry_point="planshape.tasks.robotics:fetch",
-        models={"stages": "planshape.tasks.robotics:fetch_reach_stages"},
+        env_entry_point="planshape.tasks.fetch:fetch",
+        models={"stages": "planshape.tasks.fetch:fetch_reach_stages"},
         max_episode_steps=50,
         description="Fetch arm: move the gripper to a goal position",
         kwargs={"env_id": "FetchReach-v4"},
@@ -344,12 +345,42 @@ register_task(
     TaskSpec(
         id="planshape/FetchPush-v4",
         family="FetchPush",
-        env_entry_point="planshape.tasks.robotics:fetch",
-        models={"stages": "planshape.tasks.robotics:fetch_push_stages"},
+        env_entry_point="planshape.tasks.fetch:fetch",
+        models={"stages": "planshape.tasks.fetch:fetch_push_stages"},
         max_episode_steps=50,
         description="Fetch arm: push a block to a goal on the table",
         kwargs={"env_id": "FetchPush-v4"},
     )
+)
+
+# ---- toy MDPs of the planar tasks, for planshape check-invariance -----------------------------
+# Tabular reach, maze-reach and push on the tasks' own grid models, classifiers and hooks
+# (planshape.tasks.planar.toys); the checker's random toys are the engine's own.
+
+register_toy(
+    "reach",
+    "planshape.tasks.planar.toys:reach",
+    "planar reach, real grid model (143 cells), reach and stay (continuing), γ=0.95",
+)
+register_toy(
+    "reach-episodic",
+    "planshape.tasks.planar.toys:reach_episodic",
+    "planar reach, real grid model, the goal terminates the episode, γ=0.95",
+)
+register_toy(
+    "maze-reach",
+    "planshape.tasks.planar.toys:maze_reach",
+    "planar maze-reach, real grid model with walls, 10% slip, continuing, γ=0.95",
+)
+register_toy(
+    "reach-instance",
+    "planshape.tasks.planar.toys:reach_instance",
+    "planar reach-v1, one held-out instance of the distribution: wall, drawn goal, continuing",
+)
+register_toy(
+    "push",
+    "planshape.tasks.planar.toys:push",
+    "planar push, Sokoban-like grid model on 0.12 m cells, box at goal terminates, γ=0.9",
 )
 
 __all__ = ["TaskSpec", "register_task"]

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from planshape.store import write_atomic
+from planshape.harness.store import write_atomic
 
 
 def pddl_root() -> Path:

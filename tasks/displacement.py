@@ -1,4 +1,4 @@
-"""A :class:`~planshape.potentials.Geometry` whose entities are displacements between points.
+"""A :class:`~planshape.shaping.potentials.Geometry` of displacements between points.
 
 ``Geometry.locate(subgoal)`` sees only the abstract subgoal, but in MetaWorld and Fetch the place
 an entity must reach moves: the goal is re-drawn every episode and the hand must follow the

@@ -37,7 +37,7 @@ MODULES = package_modules()
 def test_the_walk_finds_the_whole_package():
     assert len(MODULES) >= 90
     for name in (
-        "planshape.potentials",
+        "planshape.shaping.potentials",
         "planshape.tasks.planar.render",
         "planshape.baselines.paper",
     ):

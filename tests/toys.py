@@ -14,9 +14,9 @@ from typing import Any
 import gymnasium
 import numpy as np
 
-from planshape.abstraction import Abstraction
 from planshape.planning.model import PddlTask, PredicateSignature
-from planshape.progress import PlanProgress
+from planshape.shaping.abstraction import Abstraction
+from planshape.shaping.progress import PlanProgress
 
 PLACES = {"left": 0.0, "middle": 0.5, "right": 1.0}
 RADIUS = 0.15

@@ -10,7 +10,7 @@ Modules, one job each: :mod:`~planshape.invariance.mdp` (the tabular MDP type),
 :mod:`~planshape.invariance.augment` (the (s, max_idx) MDP), :mod:`~planshape.invariance.shaped`
 (the wrapper's shaping term per transition), :mod:`~planshape.invariance.settings` (what is
 solved and what the theory says), :mod:`~planshape.invariance.verdict` (tolerance, comparison,
-results), :mod:`~planshape.invariance.toys` and :mod:`~planshape.invariance.planar` (the toy
+results), :mod:`~planshape.invariance.toys` and :mod:`~planshape.tasks.planar.toys` (the toy
 MDPs), :mod:`~planshape.invariance.controls` (negative controls that must fail),
 :mod:`~planshape.invariance.check` (running it all) and :mod:`~planshape.invariance.command`.
 
@@ -39,8 +39,8 @@ _EXPORTS = {
     "Step": "shaped",
     "ToyProblem": "toys",
     "make_toy": "toys",
-    "register_toy": "toys",
-    "toy_names": "toys",
+    "register_toy": "registry",
+    "toy_names": "registry",
     "RELATIVE_TOLERANCE": "verdict",
     "Counterexample": "verdict",
     "InvarianceReport": "verdict",
@@ -70,9 +70,10 @@ __all__ = [
 if TYPE_CHECKING:
     from planshape.invariance.check import check_potential, check_shaping
     from planshape.invariance.mdp import TabularMDP
+    from planshape.invariance.registry import register_toy, toy_names
     from planshape.invariance.settings import DEFAULT_PRESETS, PRESETS, Setting
     from planshape.invariance.shaped import PotentialBased, Shaping, Step
-    from planshape.invariance.toys import ToyProblem, make_toy, register_toy, toy_names
+    from planshape.invariance.toys import ToyProblem, make_toy
     from planshape.invariance.verdict import (
         RELATIVE_TOLERANCE,
         Counterexample,

@@ -36,8 +36,8 @@ from scipy.sparse import csgraph
 
 from planshape.errors import BadInputError, PlanshapeError, PotentialValueError
 from planshape.invariance.mdp import TabularMDP
-from planshape.potentials import Geometry, Potential, ShapingContext, read_only
-from planshape.progress import PlanProgress
+from planshape.shaping.potentials import Geometry, Potential, ShapingContext, read_only
+from planshape.shaping.progress import PlanProgress
 
 __all__ = ["AugmentedMDP", "augment"]
 

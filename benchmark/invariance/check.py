@@ -27,10 +27,11 @@ from typing import Any
 import numpy as np
 
 from planshape.errors import CannotVerifyError
+from planshape.invariance.registry import default_toys
 from planshape.invariance.settings import DEFAULT_PRESETS, Setting
 from planshape.invariance.shaped import PotentialBased, Shaping, Step
 from planshape.invariance.solve import backward_induction, value_iteration
-from planshape.invariance.toys import ToyProblem, default_toys, make_toy
+from planshape.invariance.toys import ToyProblem, make_toy
 from planshape.invariance.verdict import (
     MAX_SCALE_RATIO,
     RELATIVE_TOLERANCE,
@@ -39,7 +40,7 @@ from planshape.invariance.verdict import (
     MdpVerdict,
     tie_tolerance,
 )
-from planshape.potentials import Potential, make_potential
+from planshape.shaping.potentials import Potential, make_potential
 
 __all__ = ["check_potential", "check_shaping"]
 

@@ -72,8 +72,8 @@ def _kwargs(pairs: list[str]) -> dict[str, Any]:
 
 
 def _run(args: argparse.Namespace) -> int:
+    from planshape.invariance.registry import toy_description, toy_names
     from planshape.invariance.settings import PRESETS, THEORY
-    from planshape.invariance.toys import toy_description, toy_names
 
     if args.list:
         listing = {

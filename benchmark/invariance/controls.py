@@ -53,13 +53,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from planshape.baselines.paper import PlanBased
 from planshape.invariance.augment import AugmentedMDP
 from planshape.invariance.check import check_shaping
 from planshape.invariance.shaped import PotentialBased, Shaping, Step
 from planshape.invariance.toys import make_toy
 from planshape.invariance.verdict import MdpVerdict
-from planshape.potentials import Potential, ShapingContext, make_potential
+from planshape.shaping.potentials import Potential, ShapingContext, make_potential
 
 __all__ = [
     "CONTROLS",
@@ -88,13 +87,18 @@ class SubgoalBonus(Shaping):
         return self.bonus * in_subgoal[aug.state[aug.entry_next]].astype(float)
 
 
+#: the registered potential the shifted and growing controls are built on (the paper's
+#: plan-based potential, found through the registry: the engine imports no baseline)
+REFERENCE = "plan-based"
+
+
 class ShiftedPlanBased(Potential):
     """``plan-based`` plus a constant: φ = max_idx/n + offset."""
 
     def __init__(self, offset: float = -3.0, scale: float = 1.0):
         super().__init__(scale)
         self.offset = offset
-        self._plan = PlanBased()
+        self._plan = make_potential(REFERENCE)
 
     def potential(self, ctx: ShapingContext) -> float:
         return self._plan.potential(ctx) + self.offset
@@ -144,7 +148,7 @@ class GrowingPlanBased(Potential):
     def __init__(self, base: float = 1.2, scale: float = 1.0):
         super().__init__(scale)
         self.base = base
-        self._plan = PlanBased()
+        self._plan = make_potential(REFERENCE)
 
     def potential(self, ctx: ShapingContext) -> float:
         return self.base**ctx.t * self._plan.potential(ctx)

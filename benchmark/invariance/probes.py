@@ -20,7 +20,7 @@ Each returns ``""`` when nothing was found, else one sentence with the counterex
 
 Example:
     >>> from planshape.invariance.toys import make_toy
-    >>> from planshape.potentials import make_potential
+    >>> from planshape.shaping.potentials import make_potential
     >>> aug = make_toy("random-episodic").augmented
     >>> hidden_state(make_potential("plan-based"), aug, horizon=10)
     ''
@@ -33,7 +33,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from planshape.invariance.augment import AugmentedMDP
-from planshape.potentials import Potential
+from planshape.shaping.potentials import Potential
 
 __all__ = ["growth", "hidden_state", "step_function_mismatch"]
 
@@ -99,9 +99,9 @@ def hidden_state(
 
 def step_function_mismatch(potential: Potential, aug: AugmentedMDP, table: np.ndarray) -> str:
     """The first augmented state where the potential's step function (what the shaping wrapper
-    trains with, :meth:`planshape.potentials.Potential.specialize`) disagrees with ``table``,
-    φ(·, 0) as the checker tabulated it from ``potential(ctx)``; ``""`` if none does or the
-    potential has no step function."""
+    trains with, :meth:`planshape.shaping.potentials.Potential.specialize`) disagrees with
+    ``table``, φ(·, 0) as the checker tabulated it from ``potential(ctx)``; ``""`` if none does or
+    the potential has no step function."""
     reachable = np.flatnonzero(aug.reachable & ~aug.mdp.terminal)
     if not reachable.size:
         return ""

@@ -2,7 +2,8 @@
 
 A :class:`Shaping` gives the bonus ``F`` of every stored transition ``(x, a, x')`` of an
 :class:`AugmentedMDP` for a step taken at time ``t``; the checker adds its expectation to the
-original reward. :class:`PotentialBased` reproduces :class:`planshape.shaping.PotentialShaping`
+original reward. :class:`PotentialBased` reproduces
+:class:`planshape.shaping.wrapper.PotentialShaping`
 exactly:
 
 * ``F = γ·φ(x', t+1) − φ(x, t)`` with γ the setting's discount (rule 1);
@@ -38,7 +39,7 @@ import numpy as np
 from planshape.invariance.augment import AugmentedMDP
 from planshape.invariance.probes import growth, hidden_state, step_function_mismatch
 from planshape.invariance.settings import Setting
-from planshape.potentials import Potential, make_potential
+from planshape.shaping.potentials import Potential, make_potential
 
 __all__ = ["PotentialBased", "Shaping", "Step"]
 
@@ -112,7 +113,7 @@ class PotentialBased(Shaping):
 
     def time_dependent(self, aug: AugmentedMDP, horizon: int) -> bool:
         """As declared by ``Potential.time_dependent``: an undeclared potential cannot read
-        the time (:meth:`planshape.potentials.Potential.__call__`)."""
+        the time (:meth:`planshape.shaping.potentials.Potential.__call__`)."""
         return self.potential.time_dependent
 
     def probe(self, aug: AugmentedMDP, setting: Setting) -> str:

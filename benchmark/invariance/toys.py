@@ -16,7 +16,8 @@ so nothing is built (or planned) until a toy is made:
 ``random-continuing``  the same without termination
 =====================  ========================================================================
 
-The planar toys live in :mod:`planshape.invariance.planar`; the random ones here, on a chain
+The planar toys are the planar task family's (:mod:`planshape.tasks.planar.toys`, registered
+with the tasks in :mod:`planshape.tasks`); the random ones are here, on a chain
 model generated with :func:`planshape.planning.grid_pddl` and planned by Fast Downward.
 
 Example:
@@ -33,15 +34,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from planshape.abstraction import Abstraction, Vectorized
 from planshape.errors import RegistrationError, UnknownIdError
 from planshape.invariance.augment import AugmentedMDP, augment
 from planshape.invariance.mdp import TabularMDP
+from planshape.invariance.registry import (
+    TOYS,
+    default_toys,
+    register_toy,
+    toy_names,
+)
 from planshape.invariance.settings import Setting
 from planshape.planning import GridNames, grid_pddl, parse_task, solve_text
 from planshape.planning.model import AbstractState
-from planshape.potentials import Geometry, load_reference
-from planshape.progress import PlanProgress
+from planshape.shaping.abstraction import Abstraction, Vectorized
+from planshape.shaping.potentials import Geometry, load_reference
+from planshape.shaping.progress import PlanProgress
 
 __all__ = [
     "PointGeometry",
@@ -97,36 +104,15 @@ class ToyProblem:
         return Setting.preset(preset, gamma=self.gamma, horizon=self.horizon)
 
 
-# ---- registry ---------------------------------------------------------------------------------
-
-_TOYS: dict[str, tuple[str, str]] = {}
-
-
-def register_toy(name: str, entry_point: str, description: str = "") -> None:
-    """Register a toy: ``entry_point`` (``"module:attr"``) builds its :class:`ToyProblem`."""
-    _TOYS[name] = (entry_point, description)
-
-
-def toy_names() -> list[str]:
-    """The registered toys, in registration order."""
-    return list(_TOYS)
-
-
-def default_toys() -> list[str]:
-    """The toys :func:`planshape.invariance.check_potential` runs on: all of them."""
-    return toy_names()
-
-
-def toy_description(name: str) -> str:
-    return _TOYS[name][1] if name in _TOYS else ""
+# ---- building a registered toy ---------------------------------------------------------------
 
 
 @functools.cache
 def make_toy(name: str) -> ToyProblem:
     """Build (once per process) the toy registered as ``name``."""
-    if name not in _TOYS:
-        raise UnknownIdError("toy MDP", name, _TOYS, hint="`planshape check-invariance --list`")
-    problem = load_reference(_TOYS[name][0])()
+    if name not in TOYS:
+        raise UnknownIdError("toy MDP", name, TOYS, hint="`planshape check-invariance --list`")
+    problem = load_reference(TOYS[name][0])()
     if not isinstance(problem, ToyProblem):
         raise RegistrationError(
             f"toy {name!r}: its entry point returned {type(problem).__name__}; it must return a "
@@ -250,31 +236,6 @@ def random_continuing() -> ToyProblem:
 
 # ---- the toys, one line each --------------------------------------------------------------------
 
-register_toy(
-    "reach",
-    "planshape.invariance.planar:reach",
-    "planar reach, real grid model (143 cells), reach and stay (continuing), γ=0.95",
-)
-register_toy(
-    "reach-episodic",
-    "planshape.invariance.planar:reach_episodic",
-    "planar reach, real grid model, the goal terminates the episode, γ=0.95",
-)
-register_toy(
-    "maze-reach",
-    "planshape.invariance.planar:maze_reach",
-    "planar maze-reach, real grid model with walls, 10% slip, continuing, γ=0.95",
-)
-register_toy(
-    "reach-instance",
-    "planshape.invariance.planar:reach_instance",
-    "planar reach-v1, one held-out instance of the distribution: wall, drawn goal, continuing",
-)
-register_toy(
-    "push",
-    "planshape.invariance.planar:push",
-    "planar push, Sokoban-like grid model on 0.12 m cells, box at goal terminates, γ=0.9",
-)
 register_toy(
     "random-episodic",
     "planshape.invariance.toys:random_episodic",

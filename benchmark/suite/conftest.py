@@ -71,7 +71,7 @@ class ProgressLines:
     """After each run: how many are done, the time spent and an estimate of the time left.
 
     The estimate scales the time spent by the estimated cost of the runs still to train over
-    that of the runs trained so far (:func:`planshape.estimate.run_seconds`: a 100k-step SAC
+    that of the runs trained so far (:func:`planshape.harness.estimate.run_seconds`: a 100k-step SAC
     run costs ten times a PPO run of the same budget), so neither runs found in the store
     (which take no time) nor the order of cheap and dear runs distort it. Before the first run
     finishes, it is the estimate itself."""

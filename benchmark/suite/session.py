@@ -19,10 +19,10 @@ from typing import Any
 import pytest
 
 from planshape.errors import BadInputError, UnknownIdError
-from planshape.profiles import Profile, RunKey, get_profile
-from planshape.registration import task_ids
-from planshape.runner import RunSpec, execute
-from planshape.store import ResultStore, write_atomic
+from planshape.harness.profiles import Profile, RunKey, get_profile
+from planshape.harness.runner import RunSpec, execute
+from planshape.harness.store import ResultStore, write_atomic
+from planshape.shaping.registration import task_ids
 
 SHAPED_ENTRY = re.compile(r"^(?P<potential>.+)/(?P<model>[^/]+)$")
 
@@ -80,7 +80,7 @@ class BenchSession:
     executor: str = "local"
     address: str | None = None
     render: bool = True
-    #: a folder to log every trained run to (planshape.tensorboard_logs), or None
+    #: a folder to log every trained run to (planshape.training.tensorboard_logs), or None
     tensorboard: str | None = None
     collected: int = 0
     store: ResultStore = field(init=False)
@@ -114,10 +114,11 @@ class BenchSession:
         )
 
     def estimated_seconds(self) -> dict[str, float]:
-        """Item id -> the estimated wall time of its run (:func:`planshape.estimate.run_seconds`;
+        """Item id -> the estimated wall time of its run
+        (:func:`planshape.harness.estimate.run_seconds`;
         a run without a measured rate counts its budget at the slowest known rate); 0 for a
         run already stored, which takes no time."""
-        from planshape.estimate import TRAINING_RATE, run_seconds
+        from planshape.harness.estimate import TRAINING_RATE, run_seconds
 
         slowest = min(TRAINING_RATE.values())
         return {
@@ -135,7 +136,7 @@ class BenchSession:
     @staticmethod
     def marks(key: RunKey) -> list[str]:
         """Markers of an item: its algorithm, its task family and its reward kind."""
-        from planshape.hyperparams import family
+        from planshape.training.hyperparams import family
 
         return [_marker(key.algo), _marker(family(key.task)), _marker(key.reward)]
 
@@ -203,8 +204,8 @@ class BenchSession:
 
     def finish(self) -> str:
         """Render the leaderboard from every stored row; return the terminal summary."""
-        from planshape.leaderboard import render_leaderboard, summary_table
-        from planshape.scoring import load_rows
+        from planshape.results.leaderboard import render_leaderboard, summary_table
+        from planshape.results.scoring import load_rows
 
         rows = load_rows(self.out) if self.store.runs.is_dir() else []
         if not rows:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from planshape.profiles import RunKey
+from planshape.harness.profiles import RunKey
 from planshape.suite.session import BenchSession
 
 

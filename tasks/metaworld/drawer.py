@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from planshape.registration import AbstractModel
+from planshape.shaping.registration import AbstractModel
 from planshape.tasks.common import pddl_file
 from planshape.tasks.displacement import DisplacementGeometry
 from planshape.tasks.metaworld.observation import distance, goal, hand, main_object

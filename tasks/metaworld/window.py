@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from planshape.abstraction import Classifier
-from planshape.registration import AbstractModel
+from planshape.shaping.abstraction import Classifier
+from planshape.shaping.registration import AbstractModel
 from planshape.tasks.common import pddl_file
 from planshape.tasks.displacement import Displacement, DisplacementGeometry
 from planshape.tasks.metaworld.observation import goal, hand, main_object

@@ -40,13 +40,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from planshape.abstraction import Vectorized
 from planshape.planning.grid import GridNames, cell_name, grid_pddl
 from planshape.planning.model import AbstractState
-from planshape.regions import Lattice, RegionIndex
-from planshape.registration import AbstractModel
+from planshape.shaping.abstraction import Vectorized
+from planshape.shaping.registration import AbstractModel
 from planshape.tasks.common import generated_file, pddl_file
 from planshape.tasks.planar.geometry import GEOMETRY, Point, Rect
+from planshape.tasks.regions import Lattice, RegionIndex
 
 #: side of a grid cell (m): 2.5 steps of the end effector, and the box's contact distance.
 CELL = 0.05
@@ -63,7 +63,7 @@ class Places:
     """Named regions of the plane: discs of one radius, or squares of one half side.
 
     ``grid=True`` makes the squares (of side ``2 · size``) the cells of a grid that tiles the
-    plane: every point is in exactly one cell (see :class:`planshape.regions.Lattice`).
+    plane: every point is in exactly one cell (see :class:`planshape.tasks.regions.Lattice`).
     ``alternatives`` gives a place more discs than its centre: the place holds in any of them
     (the paper's reaching subgoals are "either end of the wall"); its centre, the first disc,
     is where the distance potentials measure to, as the paper's distance potential does.
@@ -199,7 +199,7 @@ class InPlace:
     @property
     def key(self):
         """The grid cell of the entity, when the only place table is a grid (what holds is a
-        function of it: :class:`planshape.abstraction.Vectorized`'s ``key``), else None."""
+        function of it: :class:`planshape.shaping.abstraction.Vectorized`'s ``key``), else None."""
         if len(self.places) != 1 or not self.places[0].grid:
             return None
         cell = self.places[0].cell
@@ -208,7 +208,7 @@ class InPlace:
 
     def holding(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> list[int]:
         """The positions in ``groundings`` that hold in one observation (see
-        :class:`planshape.abstraction.Vectorized`)."""
+        :class:`planshape.shaping.abstraction.Vectorized`)."""
         x, y = obs[self.position].tolist()
         found = []
         for table, where in zip(self.places, self._route_for(groundings)[3], strict=True):

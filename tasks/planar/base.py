@@ -108,7 +108,7 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         self.randomize_start = bool(randomize_start)
         self.randomize_goal = bool(randomize_goal)
         self.render_mode = render_mode
-        #: points drawn on every rendered frame (planshape.videos draws the plan's subgoals)
+        #: points drawn on every rendered frame (planshape.results.videos draws the plan's subgoals)
         self.render_marks: list[tuple[float, float]] = []
         chosen = planar_version(version)
         self.version = version
@@ -241,7 +241,8 @@ class PlanarEnv(gymnasium.Env[np.ndarray, np.ndarray]):
         clipped = [min(max(a, a_lo), a_hi) for a, a_lo, a_hi in zip(q, lo, hi, strict=True)]
         obs = np.array(clipped, dtype=np.float32)
         # read-only: a fresh array every step that nothing downstream may change, so that a
-        # potential can be handed it as it is (planshape.potentials.read_only); copy it to edit
+        # potential can be handed it as it is (planshape.shaping.potentials.read_only); copy it to
+        # edit
         obs.flags.writeable = False
         return obs
 

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from planshape.errors import UnknownIdError
-from planshape.registration import AbstractModel
+from planshape.shaping.registration import AbstractModel
 from planshape.tasks.planar.abstract import Grid
 from planshape.tasks.planar.geometry import PAPER_GEOMETRY, Point, Rect
 from planshape.tasks.planar.oracle import segment_clear

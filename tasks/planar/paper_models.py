@@ -34,7 +34,7 @@ Example:
 
 from __future__ import annotations
 
-from planshape.registration import AbstractModel
+from planshape.shaping.registration import AbstractModel
 from planshape.tasks.common import pddl_file
 from planshape.tasks.planar.abstract import (
     EE_ENTITY,

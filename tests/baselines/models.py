@@ -8,10 +8,10 @@ from typing import Any
 
 import numpy as np
 
-from planshape.abstraction import Abstraction
 from planshape.planning import PddlTask, Plan, load_task, solve
-from planshape.potentials import ShapingContext
-from planshape.progress import PlanProgress
+from planshape.shaping.abstraction import Abstraction
+from planshape.shaping.potentials import ShapingContext
+from planshape.shaping.progress import PlanProgress
 
 
 @dataclass(frozen=True)

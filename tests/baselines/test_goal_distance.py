@@ -10,7 +10,7 @@ import planshape  # noqa: F401  (registers the tasks)
 from planshape.baselines.goal_distance import GoalDistance, chain_distance
 from planshape.errors import PotentialError
 from planshape.invariance.toys import PointGeometry
-from planshape.potentials import ShapingContext, make_potential
+from planshape.shaping.potentials import ShapingContext, make_potential
 
 PLANAR = ["planshape/Reach-v0", "planshape/Push-v0", "planshape/MazeReach-v0"]
 

@@ -16,7 +16,7 @@ from planshape.baselines.heuristic import HeuristicPotential, HStarGeodesic
 from planshape.errors import BadInputError, PotentialError
 from planshape.invariance import check_potential
 from planshape.planning import GoalDistances, ground_task
-from planshape.potentials import ShapingContext, make_potential, potential_ids
+from planshape.shaping.potentials import ShapingContext, make_potential, potential_ids
 from tests.baselines.models import bound
 
 HEURISTIC_IDS = [

@@ -10,7 +10,7 @@ import pytest
 
 from planshape.baselines.plan_distance import PlanDistance, step_targets
 from planshape.invariance.toys import PointGeometry
-from planshape.potentials import ShapingContext, make_potential
+from planshape.shaping.potentials import ShapingContext, make_potential
 from tests.baselines.models import bound
 
 

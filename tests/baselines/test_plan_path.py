@@ -13,7 +13,7 @@ from planshape.baselines import plan_path
 from planshape.baselines.plan_path import PlanPath, Polyline
 from planshape.errors import PotentialError
 from planshape.invariance.toys import PointGeometry
-from planshape.potentials import ShapingContext, make_potential
+from planshape.shaping.potentials import ShapingContext, make_potential
 
 
 def test_registered():

@@ -13,7 +13,7 @@ from planshape.invariance.augment import AugmentedMDP
 from planshape.invariance.mdp import TabularMDP
 from planshape.invariance.shaped import Shaping, Step
 from planshape.invariance.toys import ToyProblem, chain_progress
-from planshape.potentials import Potential, ShapingContext
+from planshape.shaping.potentials import Potential, ShapingContext
 
 
 class TabularEnv(gymnasium.Env):

@@ -21,8 +21,8 @@ from planshape.invariance.controls import (
 )
 from planshape.invariance.shaped import PotentialBased, Shaping, Step
 from planshape.invariance.toys import make_toy
-from planshape.potentials import Potential, ShapingContext, make_potential
-from planshape.shaping import PotentialShaping
+from planshape.shaping.potentials import Potential, ShapingContext, make_potential
+from planshape.shaping.wrapper import PotentialShaping
 from tests.invariance.tabular import TabularEnv
 
 
@@ -137,7 +137,7 @@ def test_magnitude_cannot_hide_an_invalid_shaping():
 
 def test_the_command_line_exits_2_on_a_refused_potential(tmp_path, monkeypatch, capsys):
     (tmp_path / "clock.py").write_text(
-        "from planshape.potentials import Potential\n"
+        "from planshape.shaping.potentials import Potential\n"
         "class Clock(Potential):\n"
         "    def potential(self, ctx):\n"
         "        return 0.01 * ctx.t\n"

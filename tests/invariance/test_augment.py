@@ -12,8 +12,8 @@ from planshape.errors import BadInputError, PotentialValueError
 from planshape.invariance.shaped import PotentialBased, Step
 from planshape.invariance.solve import value_iteration
 from planshape.invariance.toys import make_toy
-from planshape.potentials import Potential, ShapingContext, make_potential
-from planshape.shaping import PotentialShaping
+from planshape.shaping.potentials import Potential, ShapingContext, make_potential
+from planshape.shaping.wrapper import PotentialShaping
 from tests.invariance.tabular import TabularEnv, entry_index
 
 

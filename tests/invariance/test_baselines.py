@@ -8,10 +8,11 @@ import pytest
 from planshape.baselines.paper import PlanBased
 from planshape.invariance import check_potential
 from planshape.invariance.check import check_shaping
+from planshape.invariance.registry import toy_names
 from planshape.invariance.settings import DEFAULT_PRESETS
 from planshape.invariance.shaped import PotentialBased
-from planshape.invariance.toys import make_toy, toy_names
-from planshape.potentials import ShapingContext, potential_ids
+from planshape.invariance.toys import make_toy
+from planshape.shaping.potentials import ShapingContext, potential_ids
 from planshape.testing import assert_policy_invariant
 
 

@@ -8,7 +8,7 @@ import sys
 import pytest
 
 from planshape.cli import main
-from planshape.potentials import Potential, ShapingContext
+from planshape.shaping.potentials import Potential, ShapingContext
 
 
 class StaysAtZeroButBreaks(Potential):

@@ -17,7 +17,7 @@ from planshape.invariance.controls import (
 from planshape.invariance.shaped import PotentialBased, Step
 from planshape.invariance.solve import value_iteration
 from planshape.invariance.toys import make_toy
-from planshape.potentials import Potential, make_potential
+from planshape.shaping.potentials import Potential, make_potential
 
 
 @pytest.mark.parametrize("control", CONTROLS, ids=lambda c: c.name)

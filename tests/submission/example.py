@@ -12,14 +12,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from planshape.potentials import Potential, ShapingContext
+from planshape.shaping.potentials import Potential, ShapingContext
 
 
 class ProgressAndDistance(Potential):
     """Plan progress plus the negated distance from the end effector to the next subgoal.
 
     Example:
-        >>> from planshape.potentials import ShapingContext
+        >>> from planshape.shaping.potentials import ShapingContext
         >>> context = ShapingContext(obs=None, progress=1, t=0, subgoals=(frozenset(),) * 3)
         >>> ProgressAndDistance()(context)
         0.5

@@ -16,7 +16,7 @@ import pytest
 import planshape  # noqa: F401  (registers the tasks)
 from planshape.cli import main
 from planshape.errors import BadInputError
-from planshape.registration import task_spec
+from planshape.shaping.registration import task_spec
 from planshape.tasks.planar import PushEnv, ReachEnv, run_oracle
 from planshape.tasks.planar.geometry import PAPER_GEOMETRY as G
 from planshape.tasks.planar.instances import EVAL_SIZE, TRAIN_SIZE, Instance, instance_set
@@ -167,7 +167,7 @@ def test_each_episode_is_shaped_with_its_instances_plan_and_telescopes(potential
 
 
 def test_a_distribution_without_an_instance_in_info_is_refused() -> None:
-    from planshape.registration import shape_instances
+    from planshape.shaping.registration import shape_instances
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -12,7 +12,7 @@ import pytest
 from metaworld.policies import ENV_POLICY_MAP
 
 import planshape  # noqa: F401  (registers the tasks)
-from planshape.registration import task_ids, task_spec
+from planshape.shaping.registration import task_ids, task_spec
 from planshape.tasks.metaworld import observation as layout
 
 TASKS = [t for t in task_ids() if t.startswith("planshape/MetaWorld-")]

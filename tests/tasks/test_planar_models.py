@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import planshape  # noqa: F401  (registers the tasks)
-from planshape.registration import task_spec
+from planshape.shaping.registration import task_spec
 from planshape.tasks.planar.oracle import walk_plan
 
 PLANAR = [

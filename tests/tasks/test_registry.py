@@ -21,7 +21,7 @@ from stable_baselines3.common.env_checker import check_env as sb3_check_env
 
 import planshape  # noqa: F401  (registers the tasks)
 from planshape.errors import BadInputError, RegistrationError, UnknownIdError
-from planshape.registration import abstract_model, shape, task_ids, task_spec
+from planshape.shaping.registration import abstract_model, shape, task_ids, task_spec
 
 GAMMA = 0.99
 VARIANTS = [
@@ -138,8 +138,8 @@ def test_a_task_family_is_a_field_of_its_registration():
     """The family keys the hyperparameter tables; it is registered, not parsed from the id. For
     every task it is what the id's name gave before, so no run id changes."""
     from planshape.errors import RegistrationError
-    from planshape.hyperparams import family
-    from planshape.registration import TaskSpec, task_ids
+    from planshape.shaping.registration import TaskSpec, task_ids
+    from planshape.training.hyperparams import family
 
     for task in task_ids():
         name = task.split("/", 1)[-1]

@@ -14,8 +14,8 @@ import pytest
 
 import planshape  # noqa: F401  (registers the tasks)
 from planshape.planning.grid import Cell
-from planshape.registration import abstract_model, task_ids, task_spec
-from planshape.tasks import robotics
+from planshape.shaping.registration import abstract_model, task_ids, task_spec
+from planshape.tasks import point_maze
 
 TASKS = [t for t in task_ids() if t.startswith(("planshape/PointMaze", "planshape/Fetch"))]
 MAZES = [t for t in TASKS if "PointMaze" in t]
@@ -141,7 +141,7 @@ def test_controller_walking_the_plan_succeeds_and_progress_reaches_the_end_in_or
 
 @pytest.mark.parametrize("task_id", MAZES, ids=str)
 def test_maze_starts_and_ends_in_its_fixed_cells(task_id: str) -> None:
-    maze = robotics.MAZES[task_spec(task_id).kwargs["maze"]]
+    maze = point_maze.MAZES[task_spec(task_id).kwargs["maze"]]
     env = make(task_id)
     sim_maze = env.unwrapped.sim.maze
     for seed in range(3):
@@ -156,7 +156,7 @@ def test_maze_starts_and_ends_in_its_fixed_cells(task_id: str) -> None:
 def test_maze_grid_model_matches_the_maze(task_id: str) -> None:
     """One cell object per map cell, neighbours exactly between adjacent free cells, centres
     from the environment's own ``cell_rowcol_to_xy``, and the plan is a shortest path."""
-    maze = robotics.MAZES[task_spec(task_id).kwargs["maze"]]
+    maze = point_maze.MAZES[task_spec(task_id).kwargs["maze"]]
     model = abstract_model(task_spec(task_id))
     env = make(task_id, "shaped", potential="plan-based")
     task = env.get_wrapper_attr("progress").abstraction.task
@@ -192,7 +192,7 @@ def shortest_path_length(free: set[Cell], start: Cell, goal: Cell) -> int:
 
 
 def test_maze_classifier_puts_the_ball_in_exactly_one_cell() -> None:
-    model = robotics.umaze_grid()
+    model = point_maze.umaze_grid()
     centres = model.geometry.centres
     in_cell = model.classifiers["robot_at"].fn
     names = sorted(centres)
@@ -216,7 +216,7 @@ def test_distance_potential_runs_on_the_geometry(task_id: str) -> None:
 
 def test_maze_cells_tile_the_plane_even_on_their_edges():
     """A ball on the edge between two cells is in exactly one (closed squares put it in two)."""
-    from planshape.tasks.robotics import InCell
+    from planshape.tasks.point_maze import InCell
 
     centres = {f"cell_{r}_{c}": np.array([c - 0.5, 0.5 - r]) for r in range(2) for c in range(2)}
     in_cell = InCell(centres)

@@ -1,0 +1,681 @@
+"""Benchmark profiles: which runs make up a benchmark, with their fixed budgets.
+
+A profile is a list of blocks; a block is a grid of tasks × reward entries × algorithms ×
+seeds with one training budget (environment steps) per task. An *entry* is ``"sparse"``,
+``"dense"`` or ``"<potential>/<model>"``: a potential shaped from one PDDL granularity.
+
+============  ==============================================================================
+profile       what it runs (results folder)
+============  ==============================================================================
+smoke         reach, three entries, PPO, one seed, 4k steps (about a minute; a test runs it)
+default       the source paper's tasks (v1), 5 seeds per cell, budgets from learning curves:
+              reach and maze-reach × {sparse, dense, plan-based × 3 models, plan-distance,
+              plan-path, goal-distance on the grid model} × PPO, push × {sparse, dense,
+              plan-distance/grid} × SAC — what ``tox -e bench`` runs, under an hour on 2 cores
+              (``leaderboard/``)
+planar        the v1 tasks' full grid × PPO and SAC × 5 seeds at the default's budgets (hours)
+instances     the task-instance distributions × {sparse, dense, plan-based, plan-distance,
+              plan-path, goal-distance} × PPO × 5 seeds, scored on the held-out instances
+paper         the source paper's full grid: reach, push, maze-reach × {sparse, dense, 3
+              potentials × 3 models} × PPO, SAC and SAC-default × 5 seeds
+full          ``paper`` plus MetaWorld and gymnasium-robotics tasks
+metaworld     the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} × PPO ×
+              2 seeds at 102k steps: the part of ``full``'s MetaWorld block that 2 CPU cores
+              train in about 80 minutes (``full`` needs days there, see
+              :data:`METAWORLD_PROFILE`)
+default-v0    archived: ``default`` on the v0 tasks, evaluated with protocol 1, kept for its
+              stored runs (``leaderboard/default-v0/``); ``planshape bench`` refuses it
+metaworld-v0  archived: ``metaworld`` with reach-v3, protocol 1 (``leaderboard/metaworld-v0/``)
+============  ==============================================================================
+
+Every profile's results live in their own folder (:attr:`Profile.folder`): ``leaderboard/``
+for the default profile, ``leaderboard/<name>/`` for any other.
+
+Example:
+    >>> runs = list(PROFILES["smoke"].runs())
+    >>> len(runs), runs[0].task, runs[0].entry
+    (3, 'planshape/Reach-v1', 'sparse')
+    >>> PROFILES["smoke"].folder, PROFILES["default"].folder
+    ('leaderboard/smoke', 'leaderboard')
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from planshape.errors import UnknownIdError
+from planshape.shaping.registration import task_spec
+
+#: the folder under which every profile's results are stored
+RESULTS_ROOT = "leaderboard"
+
+#: stable-baselines3's SAC (PyTorch) and SBX's (JAX). Tuned SAC runs with SBX: measured side by
+#: side (``python -m planshape.perf.training``), it trains the planar tasks 2.4-3.0 times as
+#: fast (Push-v1: 625 against 227 steps/s sparse, 506-566 against 201-212 shaped), with the same
+#: hyperparameters; stable-baselines3 stays available as ``SAC`` (and its library defaults,
+#: which the source paper ran, as ``SAC-default``)
+SAC, SBX_SAC = "SAC", "SBX-SAC"
+
+#: the planar tasks the profiles run: v1, the source paper's (reach behind its wall, push with
+#: its cylinder)
+PLANAR = ("planshape/Reach-v1", "planshape/Push-v1", "planshape/MazeReach-v1")
+PUSH = ("planshape/Push-v1",)
+#: the task-instance distributions of the v1 planar tasks (evaluated on held-out instances)
+RANDOMIZED = (
+    "planshape/ReachRandomized-v1",
+    "planshape/PushRandomized-v1",
+    "planshape/MazeReachRandomized-v1",
+)
+#: the v0 planar tasks of the archived ``default-v0`` profile
+PLANAR_V0 = ("planshape/Reach-v0", "planshape/Push-v0", "planshape/MazeReach-v0")
+PAPER_POTENTIALS = ("plan-based", "time-varying", "distance-varying")
+#: the source paper's granularities of the planar models
+PAPER_MODELS = ("single", "multi", "grid")
+#: planning-derived potentials beyond the paper, meaningful on the grid models
+PLANNING_POTENTIALS = ("plan-distance", "plan-path", "h-star", "h-star-geodesic")
+#: the grid models of the planar tasks (push also has one with diagonal, sliding pushes)
+GRID_MODELS = ("grid", "grid-diagonal")
+#: the control entry: the hand-crafted dense reward's distance as a potential
+CONTROL_POTENTIALS = ("goal-distance",)
+METAWORLD_V0 = tuple(
+    f"planshape/MetaWorld-{name}-v3"
+    for name in (
+        "reach",
+        "push",
+        "pick-place",
+        "door-open",
+        "drawer-open",
+        "drawer-close",
+        "button-press-topdown",
+        "window-open",
+    )
+)
+#: the MetaWorld tasks the profiles run: reach-v4 observes the fingertip centre, so that its
+#: plan's last subgoal holds on the step of MetaWorld's success
+METAWORLD = tuple(t.replace("MetaWorld-reach-v3", "MetaWorld-reach-v4") for t in METAWORLD_V0)
+ROBOTICS = (
+    "planshape/PointMaze_UMaze-v3",
+    "planshape/PointMaze_Medium-v3",
+    "planshape/FetchReach-v4",
+    "planshape/FetchPush-v4",
+)
+
+
+@dataclass(frozen=True)
+class RunKey:
+    """The identity of one training run inside a profile (the settings come from elsewhere)."""
+
+    task: str
+    entry: str
+    algo: str
+    seed: int
+    budget: int
+
+    @property
+    def potential(self) -> str | None:
+        return None if self.entry in ("sparse", "dense") else self.entry.rsplit("/", 1)[0]
+
+    @property
+    def model(self) -> str | None:
+        return None if self.entry in ("sparse", "dense") else self.entry.rsplit("/", 1)[1]
+
+    @property
+    def reward(self) -> str:
+        return self.entry if self.entry in ("sparse", "dense") else "shaped"
+
+
+def entries(task: str, potentials: Sequence[str], models: Sequence[str] | None = None) -> list[str]:
+    """``sparse``, ``dense`` and every potential × model of ``task`` (or the given models)."""
+    known = list(task_spec(task).models)
+    chosen = known if models is None else [m for m in models if m in known]
+    return ["sparse", "dense"] + [f"{p}/{m}" for p in potentials for m in chosen]
+
+
+@dataclass(frozen=True)
+class Block:
+    """A grid of runs: tasks × entries × algorithms × seeds, with a budget per task.
+
+    Attributes:
+        tasks: task ids.
+        algos: algorithm names (see :mod:`planshape.training.hyperparams`).
+        seeds: training seeds.
+        budgets: task -> environment steps of training.
+        potentials: potentials shaped for every model of each task (beside sparse and dense).
+        models: restrict the shaped entries to these models (all of the task's by default).
+        include_sparse_dense: whether the block has the sparse and dense references.
+    """
+
+    tasks: Sequence[str]
+    algos: Sequence[str]
+    seeds: Sequence[int]
+    budgets: Mapping[str, int]
+    potentials: Sequence[str] = PAPER_POTENTIALS
+    models: Sequence[str] | None = None
+    include_sparse_dense: bool = True
+
+    def runs(self) -> Iterator[RunKey]:
+        for task in self.tasks:
+            names = entries(task, self.potentials, self.models)
+            if not self.include_sparse_dense:
+                names = names[2:]
+            for entry in names:
+                for algo in self.algos:
+                    for seed in self.seeds:
+                        yield RunKey(task, entry, algo, seed, self.budgets[task])
+
+
+@dataclass(frozen=True)
+class Profile:
+    """A named benchmark: blocks of runs plus how they are evaluated.
+
+    Attributes:
+        name: the profile's name.
+        description: one line for ``--help`` and the leaderboard header.
+        blocks: the runs.
+        eval_every: evaluate the policy every this many environment steps (and at the end).
+        eval_episodes: deterministic evaluation episodes per evaluation point, on tasks that
+            draw their start from the seed (a fixed task runs one episode, a distribution its
+            held-out instances: :func:`planshape.harness.runner.evaluation_episodes`).
+        caveats: what a reader of its leaderboard must know.
+        archived: for a profile kept only for its stored runs, why it cannot be run any more
+            and how to reproduce it (``planshape bench`` refuses it).
+    """
+
+    name: str
+    description: str
+    blocks: Sequence[Block]
+    eval_every: int
+    eval_episodes: int
+    caveats: Sequence[str] = field(default_factory=tuple)
+    archived: str = ""
+
+    @property
+    def folder(self) -> str:
+        """Where its results are stored, relative to the repository root: ``leaderboard/`` for
+        the default profile, ``leaderboard/<name>/`` for every other."""
+        return RESULTS_ROOT if self.name == "default" else f"{RESULTS_ROOT}/{self.name}"
+
+    def runs(
+        self,
+        *,
+        tasks: Sequence[str] | None = None,
+        seeds: Sequence[int] | None = None,
+        extra_potentials: Sequence[str] = (),
+    ) -> Iterator[RunKey]:
+        """Every run, optionally only for some tasks or seeds, plus runs of extra potentials
+        (a submission) over every model of each task, with each block's algorithms."""
+        seen: set[RunKey] = set()
+        for block in self.blocks:
+            keys = list(block.runs())
+            for potential in extra_potentials:
+                extra = Block(
+                    block.tasks,
+                    block.algos,
+                    block.seeds,
+                    block.budgets,
+                    (potential,),
+                    include_sparse_dense=False,
+                )
+                keys += list(extra.runs())
+            for key in keys:
+                if tasks is not None and key.task not in tasks:
+                    continue
+                if seeds is not None and key.seed not in seeds:
+                    continue
+                if key not in seen:
+                    seen.add(key)
+                    yield key
+
+    def header(self, rows: Sequence[Mapping[str, Any]] = ()) -> dict[str, Any]:
+        """What a leaderboard of this profile's stored ``rows`` states above its tables: the
+        same whichever command renders it (``planshape bench`` or ``planshape leaderboard``),
+        and free of dates, so re-rendering unchanged rows leaves every file byte-identical.
+        The command reproduces the rows: the profile plus each submitted potential in them.
+
+        Example:
+            >>> PROFILES["smoke"].header()["command"]
+            'planshape bench --profile smoke'
+        """
+        own = {key.potential for key in self.runs()}
+        submitted = sorted({str(r["potential"]) for r in rows if r.get("potential")} - own)
+        command = self.archived or " ".join(
+            ["planshape bench --profile", self.name, *(f"--potential {p}" for p in submitted)]
+        )
+        current = self._current(rows)
+        stale = sorted(
+            {
+                (str(r["run_id"]), int(r["budget"]))
+                for r, ok in zip(rows, current, strict=True)
+                if not ok
+            }
+        )
+        planned = {(k.task, k.entry, k.algo, k.seed) for k in self.runs()}
+        stored = {
+            (r["task"], r["entry"], r["algo"], int(r["seed"]))
+            for r, ok in zip(rows, current, strict=True)
+            if ok
+        } & planned
+        partial = (
+            [
+                f"partial: {len(stored)} of the profile's {len(planned)} runs are stored; "
+                "the others have not been trained yet"
+            ]
+            if rows and len(stored) < len(planned) and not self.archived
+            else []
+        )
+        kept = (
+            [
+                f"{len(stale)} stored runs at budgets this profile no longer uses (e.g. "
+                f"runs/{stale[0][0]}.jsonl, {stale[0][1]:,} steps) stay in runs/ and are not "
+                "shown"
+            ]
+            if stale
+            else []
+        )
+        return {
+            "profile": self.name,
+            "description": self.description,
+            "command": command,
+            "caveats": [*partial, *self.caveats, *kept],
+            "eval_every": self.eval_every,
+            "eval_episodes": self.eval_episodes,
+        }
+
+    def budgets(self) -> dict[tuple[str, str], int]:
+        """(task, algo) -> budget, for the leaderboard header."""
+        return {(t, a): b.budgets[t] for b in self.blocks for t in b.tasks for a in b.algos}
+
+    def shows(self, row: Mapping[str, Any]) -> bool:
+        """Whether a stored row is one of this profile's cells as the profile is now: its task
+        and algorithm are in the profile at the row's budget. A run stored before a budget
+        changed stays in the store, but is not mixed into the cells of the new budget.
+
+        Example:
+            >>> smoke = PROFILES["smoke"]
+            >>> row = {"task": "planshape/Reach-v1", "algo": "PPO", "budget": 4096}
+            >>> smoke.shows(row), smoke.shows({**row, "budget": 2048})
+            (True, False)
+        """
+        return self._current([row])[0]
+
+    def shown(self, rows: Sequence[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
+        """The rows :meth:`shows` keeps."""
+        return [r for r, ok in zip(rows, self._current(rows), strict=True) if ok]
+
+    def _current(self, rows: Sequence[Mapping[str, Any]]) -> list[bool]:
+        """:meth:`shows` of every row, with the budget table built once."""
+        budgets = self.budgets()
+        return [budgets.get((r["task"], r["algo"])) == int(r["budget"]) for r in rows]
+
+
+SMOKE = Profile(
+    name="smoke",
+    description="reach, 3 entries, PPO, 1 seed, 4096 steps: checks the pipeline end to end",
+    blocks=(
+        Block(
+            tasks=("planshape/Reach-v1",),
+            algos=("PPO",),
+            seeds=(0,),
+            budgets={"planshape/Reach-v1": 4096},
+            potentials=("plan-based",),
+            models=("multi",),
+        ),
+    ),
+    eval_every=2048,
+    eval_episodes=5,
+    caveats=("smoke profile: budgets far too small to learn; for checking the pipeline only",),
+)
+
+# Budgets are multiples of PPO's rollout (8 environments × 128 steps), so PPO trains exactly
+# the budget. The same per task for a version and its distribution.
+
+#: the v0 tasks' budgets (their stored runs): chosen before learning curves were measured
+_V0_PPO_STEPS = {"Reach": 40 * 1024, "Push": 80 * 1024, "MazeReach": 80 * 1024}
+_V0_SAC_STEPS = {"Reach": 10_000, "Push": 15_000, "MazeReach": 15_000}
+
+#: PPO on the v1 tasks, from learning curves of ``planshape probe`` (evaluation of the
+#: deterministic policy every 40,960 steps, seeds 0-2; the rule: dense reaches success on reach
+#: and push, a planning-derived potential on maze-reach, where dense is trapped by the wall):
+#:
+#: * Reach 245,760: dense succeeds at 245,760 on 3/3 seeds (training-episode success 0.93,
+#:   0.86, 0.87), the first point where all three do; at 204,800 none did.
+#: * MazeReach 122,880: plan-distance/grid succeeds from 81,920 on 3/3 seeds and at every
+#:   point after (training success 0.52-0.64 at 122,880); h-star-geodesic/grid 3/3 at 204,800.
+#: * Push 327,680: NOT informative. Dense succeeds on 1/3 seeds (seed 0 from 204,800; seed 1
+#:   pushes to 0.055 m, training success 0.69, but its deterministic policy fails; seed 2 never
+#:   moves the cylinder); the planar profile's 5 seeds at 327,680: 3/5. Only the ``planar``
+#:   profile carries it, with that caveat.
+_PPO_STEPS = {"Reach": 240 * 1024, "Push": 320 * 1024, "MazeReach": 120 * 1024}
+#: SBX-SAC on the v1 tasks (train_freq 4 × 4 gradient steps), from the same kind of curves
+#: every 10,000 steps (``planshape probe TASK ENTRY --algo SBX-SAC --chunks …``), seeds 0-4:
+#:
+#: * Push 150,000: dense's deterministic policy succeeds on seeds 0-3 at every point from
+#:   120,000 to 250,000 (first success at 100k, 110k, 50k, 30k; training success 0.94-1.00 at
+#:   120k, 1.00 from 150k); seed 4 never succeeds up to 250,000 (training success 0.00 at every
+#:   point). So dense is 4/5 = 0.8 from 120,000 on and the rule holds at 150,000 with 30k of
+#:   margin; at 100,000 (the previous budget) it was 3/5, as the stored runs show.
+#: * Reach 100,000 (not yet confirmed): with train_freq 1, dense succeeded from 80,000 on
+#:   seed 0; with 4 × 4, dense succeeds from 60,000 on seed 0 and from 80,000 on seed 1, and
+#:   seed 2 not by 150,000 (training success 0.02 there); seeds 3 and 4 are the next probe.
+#: * MazeReach 60,000: not yet measured; the plan-distance curve is the next probe.
+_SAC_STEPS = {"Reach": 100_000, "Push": 150_000, "MazeReach": 60_000}
+
+
+def _per_task(steps: Mapping[str, int], tasks: Sequence[str]) -> dict[str, int]:
+    """Budgets of ``tasks`` by their family (``planshape/PushRandomized-v1`` is a push task)."""
+    return {t: steps[task_spec(t).family.removesuffix("Randomized")] for t in tasks}
+
+
+_PLANAR_BUDGETS = _per_task(_PPO_STEPS, PLANAR + RANDOMIZED)
+_SAC_BUDGETS = _per_task(_SAC_STEPS, PLANAR + RANDOMIZED)
+_V0_BUDGETS = _per_task(_V0_PPO_STEPS, PLANAR_V0)
+_V0_SAC_BUDGETS = _per_task(_V0_SAC_STEPS, PLANAR_V0)
+REACH, MAZE = "planshape/Reach-v1", "planshape/MazeReach-v1"
+
+
+def _shaped_only(
+    tasks: Sequence[str],
+    algo: str,
+    seeds: int,
+    budgets: Mapping[str, int],
+    potentials: Sequence[str],
+    models: Sequence[str],
+) -> Block:
+    """A block of shaped entries only (its sparse and dense runs are in another block)."""
+    return Block(
+        tasks, (algo,), tuple(range(seeds)), budgets, potentials, models, include_sparse_dense=False
+    )
+
+
+def _v0_default_blocks() -> tuple[Block, ...]:
+    """The blocks of the archived default profile of the v0 tasks (its stored runs)."""
+    planar, push = PLANAR_V0, ("planshape/Push-v0",)
+    return (
+        Block(planar, ("PPO",), tuple(range(5)), _V0_BUDGETS, models=PAPER_MODELS),
+        Block(
+            planar,
+            (SAC,),
+            tuple(range(2)),
+            _V0_SAC_BUDGETS,
+            PAPER_POTENTIALS + CONTROL_POTENTIALS,
+            models=("grid",),
+        ),
+        _shaped_only(planar, SAC, 2, _V0_SAC_BUDGETS, ("plan-path",), GRID_MODELS),
+        Block(push, (SAC,), tuple(range(5)), _V0_SAC_BUDGETS, CONTROL_POTENTIALS, ("grid",)),
+        _shaped_only(push, SAC, 5, _V0_SAC_BUDGETS, ("plan-path",), GRID_MODELS),
+        _shaped_only(planar, "PPO", 5, _V0_BUDGETS, PLANNING_POTENTIALS, GRID_MODELS),
+        _shaped_only(planar, "PPO", 5, _V0_BUDGETS, CONTROL_POTENTIALS, ("grid",)),
+    )
+
+
+_DEFAULT_DESCRIPTION = (
+    "reach, push, maze-reach × {sparse, dense, 3 potentials × 3 models} × PPO × 5 seeds, "
+    "plus SAC (tuned) on sparse, dense, the grid potentials, plan-path and goal-distance × "
+    "2 seeds (5 on push for sparse, dense, plan-path and goal-distance), plus the "
+    "planning-derived potentials (plan-distance, plan-path, h-star, h-star-geodesic) on "
+    "the grid models and the goal-distance control × PPO × 5 seeds"
+)
+_SAC_BUDGET_CAVEAT = (
+    "SAC runs get smaller budgets than PPO (SAC takes one gradient step per environment "
+    "step; on 2 CPU cores these budgets keep the profile near an hour and a half)"
+)
+_SHARED_CAVEATS = (
+    "every potential's φ is multiplied by shaping_scale = 1/(1 − γ) = 100 (planshape."
+    "hyperparams); the source paper tuned a multiplier per potential by hand, this "
+    "benchmark applies one rule to every entry",
+    "PPO and SAC see the observation rescaled from its bounds to [-1, 1] "
+    "(rescale_observations, planshape.training.hyperparams); on raw metres no entry solved "
+    "maze-reach",
+)
+_V1_CAVEATS = (
+    "the tasks are the source paper's (v1): reach behind its wall, push with its cylinder, "
+    "its subgoal-based dense rewards; episodes are 50 (reach, maze-reach) and 40 (push) "
+    "steps, not the paper's 25, in which the goals cannot be reached at 0.02 m per step",
+    "each task starts every episode in one state and is deterministic, so every "
+    "evaluation point is one episode and a run's success is 0 or 1",
+    "goal-distance is a control, not a planning-derived potential: the straight-line "
+    "distance to the goal (v0's dense reward) used as a potential",
+    "SAC is SBX's (JAX), SBX-SAC, with stable-baselines3's SAC hyperparameters; budgets per "
+    "task and algorithm come from measured learning curves (planshape.harness.profiles)",
+)
+
+#: the entries of the default profile: the references, the paper's plan-based potential on its
+#: three models, and the planning-derived potentials and the control on the grid model
+_DEFAULT_PPO_ENTRIES = (
+    Block((REACH, MAZE), ("PPO",), tuple(range(5)), _PLANAR_BUDGETS, ("plan-based",)),
+    _shaped_only(
+        (REACH, MAZE),
+        "PPO",
+        5,
+        _PLANAR_BUDGETS,
+        ("plan-distance", "plan-path", *CONTROL_POTENTIALS),
+        ("grid",),
+    ),
+)
+_DEFAULT_SAC_ENTRIES = (
+    Block(PUSH, (SBX_SAC,), tuple(range(5)), _SAC_BUDGETS, ("plan-distance",), ("grid",)),
+)
+
+DEFAULT = Profile(
+    name="default",
+    description=(
+        "reach and maze-reach × {sparse, dense, plan-based × 3 models, plan-distance, "
+        "plan-path and goal-distance on the grid model} × PPO, and push × {sparse, dense, "
+        "plan-distance on the grid model} × SAC, 5 seeds each, on the source paper's tasks "
+        "(v1), at budgets from measured learning curves; the rest of the paper's grid is in "
+        "the planar profile"
+    ),
+    blocks=(*_DEFAULT_PPO_ENTRIES, *_DEFAULT_SAC_ENTRIES),
+    eval_every=10_000,
+    eval_episodes=10,
+    caveats=(
+        "what fits in an hour on 2 CPU cores: PPO on reach and maze-reach, SAC on push (PPO's "
+        "dense reward solves push on 3 of 5 seeds at 327,680 steps, short of the rule's 0.8, "
+        "so no PPO budget on push measured so far is informative); the paper's other "
+        "potentials, SAC on reach and maze-reach and PPO on push are in the planar profile",
+        "SAC on push trains 150,000 steps: dense's learning curves (seeds 0-4) succeed on 4 of "
+        "5 seeds from 120,000 steps on (seed 4 never moves the cylinder), so 0.8 is the most "
+        "dense reaches here; the runs at the previous budget, 100,000 (dense 3/5), stay "
+        "stored",
+        *_SHARED_CAVEATS,
+        *_V1_CAVEATS,
+    ),
+)
+
+PLANAR_PROFILE = Profile(
+    name="planar",
+    description=(
+        "reach, push, maze-reach × {sparse, dense, 3 potentials × 3 models, the "
+        "planning-derived potentials on the grid models, goal-distance} × PPO and SAC × 5 "
+        "seeds, on the source paper's tasks (v1): the default profile's grid in full (hours "
+        "on 2 CPU cores)"
+    ),
+    blocks=(
+        Block(PLANAR, ("PPO",), tuple(range(5)), _PLANAR_BUDGETS, models=PAPER_MODELS),
+        Block(PLANAR, (SBX_SAC,), tuple(range(5)), _SAC_BUDGETS, models=PAPER_MODELS),
+        *(
+            _shaped_only(PLANAR, algo, 5, budgets, PLANNING_POTENTIALS, GRID_MODELS)
+            for algo, budgets in (("PPO", _PLANAR_BUDGETS), (SBX_SAC, _SAC_BUDGETS))
+        ),
+        *(
+            _shaped_only(PLANAR, algo, 5, budgets, CONTROL_POTENTIALS, ("grid",))
+            for algo, budgets in (("PPO", _PLANAR_BUDGETS), (SBX_SAC, _SAC_BUDGETS))
+        ),
+    ),
+    eval_every=10_000,
+    eval_episodes=10,
+    caveats=(
+        "PPO on push: the dense reward solves it on 3 of 5 seeds at this budget (327,680 "
+        "steps), short of the rule's 0.8, so PPO's push cells say little about shaping",
+        *_SHARED_CAVEATS,
+        *_V1_CAVEATS,
+    ),
+)
+
+DEFAULT_V0 = Profile(
+    name="default-v0",
+    description=_DEFAULT_DESCRIPTION
+    + ", on the v0 tasks (reach without its wall, push with a box)",
+    blocks=_v0_default_blocks(),
+    eval_every=10_000,
+    eval_episodes=10,
+    caveats=(
+        _SAC_BUDGET_CAVEAT,
+        *_SHARED_CAVEATS,
+        "episodes are 40 (reach, push) and 50 (maze-reach) steps, not the paper's 25: the "
+        "goals cannot be reached in 25 steps of 0.02 m",
+        "goal-distance is a control, not a planning-derived potential: the dense reward's own "
+        "distance used as a potential; where it also trails dense, the gap is what keeping "
+        "the optimal policy costs, not what the plan lacks",
+        "v0 tasks differ from the source paper's: reach has no wall, push's object is a square "
+        "box; evaluation protocol 1 ran 10 copies of the one deterministic episode and "
+        "recorded PPO's points before the rollout's update",
+    ),
+    archived=(
+        "archived: the default profile of the v0 tasks, evaluated with protocol 1; kept for "
+        "its stored runs (leaderboard/default-v0). Reproduce it: git checkout 802aaba, "
+        "then tox -e bench"
+    ),
+)
+
+PAPER = Profile(
+    name="paper",
+    description="the source paper's grid: 3 tasks × 11 entries × PPO, SAC, SAC-default × 5 seeds",
+    blocks=(
+        Block(
+            PLANAR,
+            ("PPO",),
+            tuple(range(5)),
+            {t: 2 * b for t, b in _PLANAR_BUDGETS.items()},
+            models=PAPER_MODELS,
+        ),
+        Block(
+            PLANAR,
+            (SBX_SAC, "SAC-default"),
+            tuple(range(5)),
+            {t: 30_000 for t in PLANAR},
+            models=PAPER_MODELS,
+        ),
+    ),
+    eval_every=10_000,
+    eval_episodes=20,
+)
+
+FULL = Profile(
+    name="full",
+    description="paper plus MetaWorld (8 tasks) and gymnasium-robotics (PointMaze, Fetch)",
+    blocks=(
+        *PAPER.blocks,
+        Block(
+            METAWORLD + ROBOTICS,
+            ("PPO", SBX_SAC),
+            tuple(range(5)),
+            {t: 500_000 for t in METAWORLD + ROBOTICS},
+            potentials=("plan-based", "distance-varying", "plan-distance"),
+        ),
+    ),
+    eval_every=50_000,
+    eval_episodes=20,
+)
+
+#: PPO's rollout on MetaWorld is 8 environments × 512 steps; 25 rollouts
+_METAWORLD_BUDGET = 25 * 8 * 512
+
+_METAWORLD_CAVEATS = (
+    "a reduction of the full profile's MetaWorld block (500k steps × 5 seeds × PPO and SAC "
+    "× 5 entries) to what 2 CPU cores train in about 80 minutes (2.64 h of runs): PPO "
+    "trains MetaWorld at about 1,300 steps/s on one core and SAC ([256, 256], one gradient "
+    "step per step) at about 50, so the full block would take days; 102k steps are 25 PPO "
+    "updates, far below the millions MetaWorld tasks usually need",
+    "observations are MetaWorld's raw ones (no finite bounds to rescale from)",
+)
+
+
+def _metaworld(name: str, tasks: Sequence[str], caveats: Sequence[str] = (), archived: str = ""):
+    """The metaworld profile on ``tasks``."""
+    return Profile(
+        name=name,
+        description=(
+            "the 8 MetaWorld tasks × {sparse, dense, plan-based, plan-distance} on the stages "
+            "model × PPO × 2 seeds, 102,400 steps each"
+        ),
+        blocks=(
+            Block(
+                tasks,
+                ("PPO",),
+                (0, 1),
+                {t: _METAWORLD_BUDGET for t in tasks},
+                potentials=("plan-based", "plan-distance"),
+            ),
+        ),
+        eval_every=4 * 8 * 512,
+        eval_episodes=10,
+        caveats=(*_METAWORLD_CAVEATS, *caveats),
+        archived=archived,
+    )
+
+
+METAWORLD_PROFILE = _metaworld("metaworld", METAWORLD)
+METAWORLD_V0_PROFILE = _metaworld(
+    "metaworld-v0",
+    METAWORLD_V0,
+    caveats=(
+        "reach-v3's hand-at lags MetaWorld's success by 2-5 steps (reach-v4 fixes it); "
+        "evaluation protocol 1 recorded PPO's points before the rollout's update",
+    ),
+    archived=(
+        "archived: the metaworld profile with reach-v3, evaluated with protocol 1; kept for "
+        "its stored runs (leaderboard/metaworld-v0). Reproduce with git checkout 802aaba, then "
+        "tox -e bench -- --profile metaworld --out leaderboard/metaworld"
+    ),
+)
+
+INSTANCES = Profile(
+    name="instances",
+    description=(
+        "the task-instance distributions of reach, push and maze-reach × {sparse, dense, "
+        "plan-based, plan-distance and plan-path on the grid models, goal-distance} × PPO × 5 "
+        "seeds, trained on 100 instances and evaluated on 50 held-out ones"
+    ),
+    blocks=(
+        Block(
+            RANDOMIZED,
+            ("PPO",),
+            tuple(range(5)),
+            _PLANAR_BUDGETS,
+            ("plan-based", "plan-distance", "plan-path", *CONTROL_POTENTIALS),
+            models=("grid",),
+        ),
+    ),
+    eval_every=10_000,
+    eval_episodes=10,
+    caveats=(
+        "every evaluation point runs the 50 held-out instances: success is the fraction of "
+        "unseen instances solved",
+        "budgets are those of the fixed tasks, not yet chosen from learning curves",
+        *_SHARED_CAVEATS,
+    ),
+)
+
+PROFILES: dict[str, Profile] = {
+    p.name: p
+    for p in (
+        SMOKE,
+        DEFAULT,
+        PLANAR_PROFILE,
+        PAPER,
+        FULL,
+        METAWORLD_PROFILE,
+        INSTANCES,
+        DEFAULT_V0,
+        METAWORLD_V0_PROFILE,
+    )
+}
+
+
+def get_profile(name: str) -> Profile:
+    if name not in PROFILES:
+        raise UnknownIdError("profile", name, PROFILES)
+    return PROFILES[name]

@@ -1,0 +1,116 @@
+"""Training throughput: environment steps per second of every learner backend on the same
+task and entries, measured side by side (interleaved) in one process, so that each ratio is
+read from one run.
+
+For each (task, algorithm, entry) the learner first trains a warm-up (so JAX has compiled and
+the replay buffer is past its random steps), then is timed on ``--steps`` more; the fastest of
+``--repeats`` interleaved timings (each repeat does the same work from the same seed, so the
+slower ones measure other processes) is reported with two ratios: shaped over sparse (the cost of
+shaping; goal ≥ 0.95) and this backend over stable-baselines3's same algorithm (the gain of
+SBX). Run ``python -m planshape.perf.training [--json]``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from collections.abc import Sequence
+from typing import Any
+
+import planshape  # noqa: F401  (registers the tasks)
+from planshape.harness.profiles import RunKey
+from planshape.harness.runner import make_learner
+from planshape.training.hyperparams import hyperparameters
+from planshape.training.learners import learner
+
+GOAL = 0.95
+ENTRIES = ("sparse", "plan-based/grid", "plan-distance/grid", "plan-path/grid")
+#: (task, algorithms side by side, entries)
+CASES: tuple[tuple[str, tuple[str, ...], tuple[str, ...]], ...] = (
+    ("planshape/Push-v1", ("PPO", "SBX-PPO"), ENTRIES),
+    ("planshape/Push-v1", ("SAC", "SBX-SAC", "SBX-TQC", "SBX-CrossQ"), ENTRIES),
+    ("planshape/Reach-v1", ("SAC", "SBX-SAC"), ("sparse", "plan-path/grid")),
+)
+#: the stable-baselines3 algorithm each learner is compared with
+_REFERENCE = {"PPO": "PPO", "SAC": "SAC", "TQC": "SAC", "CrossQ": "SAC"}
+
+
+def steps_per_second(task: str, entry: str, algo: str, steps: int, warmup: int = 0) -> float:
+    """Train ``algo`` on one entry for ``warmup`` steps, then time ``steps`` more (no
+    evaluation)."""
+    import torch
+
+    torch.set_num_threads(1)
+    settings = hyperparameters(task, algo)
+    if "learning_starts" in settings:  # time gradient steps, not the random warm-up
+        settings["learning_starts"] = 0
+    model = make_learner(RunKey(task, entry, algo, 0, steps), settings)
+    if warmup:
+        model.learn(warmup)
+    start = time.perf_counter()
+    model.learn(steps, reset_num_timesteps=not warmup)
+    return steps / (time.perf_counter() - start)
+
+
+def measure(steps: int, repeats: int, cases=CASES) -> list[dict[str, Any]]:
+    """One row per (task, algorithm, backend, entry)."""
+    rows = []
+    for task, algos, entries in cases:
+        timings: dict[tuple[str, str], list[float]] = {(a, e): [] for a in algos for e in entries}
+        for _ in range(repeats):
+            for algo, entry in timings:
+                n = steps if "PPO" in algo else max(steps // 16, 64)
+                timings[algo, entry].append(steps_per_second(task, entry, algo, n, warmup=n // 4))
+        rate = {k: max(v) for k, v in timings.items()}
+        for algo, entry in timings:
+            reference = _REFERENCE[learner(algo).cls]
+            rows.append(
+                {
+                    "task": task,
+                    "algo": algo,
+                    "backend": learner(algo).backend,
+                    "entry": entry,
+                    "steps_per_s": rate[algo, entry],
+                    "shaped_over_sparse": rate[algo, entry] / rate[algo, "sparse"],
+                    "over_sb3": (
+                        rate[algo, entry] / rate[reference, entry]
+                        if (reference, entry) in rate
+                        else None
+                    ),
+                }
+            )
+    return rows
+
+
+def render(rows: Sequence[dict[str, Any]]) -> str:
+    header = (
+        f"{'task':12s} {'algo':11s} {'backend':17s} {'entry':20s} {'steps/s':>8s} "
+        f"{'shaped/sparse':>13s} {'/ sb3':>6s}"
+    )
+    lines = [f"training throughput (goal shaped/sparse ≥ {GOAL})", header, "-" * len(header)]
+    for r in rows:
+        ratio = "" if r["entry"] == "sparse" else f"{r['shaped_over_sparse']:.2f}"
+        if ratio:
+            ratio += " ok" if r["shaped_over_sparse"] >= GOAL else " LOW"
+        over = "" if r["over_sb3"] is None else f"{r['over_sb3']:.2f}"
+        lines.append(
+            f"{r['task'].split('/')[1]:12s} {r['algo']:11s} {r['backend']:17s} {r['entry']:20s} "
+            f"{r['steps_per_s']:8.0f} {ratio:>13s} {over:>6s}"
+        )
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--steps", type=int, default=8192, help="PPO steps per timing (SAC: /16)")
+    parser.add_argument("--repeats", type=int, default=5, help="interleaved repeats")
+    parser.add_argument("--json", action="store_true", help="print the rows as JSON")
+    args = parser.parse_args(argv)
+    rows = measure(args.steps, args.repeats)
+    print(json.dumps(rows, indent=2) if args.json else render(rows))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

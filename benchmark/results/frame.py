@@ -1,0 +1,109 @@
+"""Results as data: every stored evaluation row as one tidy pandas DataFrame.
+
+``load(DIR)`` reads ``DIR/runs/*.jsonl`` through the store's checks
+(:func:`planshape.results.scoring.load_rows`: a damaged or unfinished run file is an error naming
+it) and returns one row per evaluation point, with nested fields flattened into dotted columns
+(``hyperparameters.learning_rate``, ``packages.torch``) and typed columns: integers for ``seed``,
+``step``, ``budget``, ``eval_episodes``; floats for the metrics; strings for ids; ``final`` a
+boolean. Lists (``hyperparameters.policy_kwargs.net_arch``) are kept as JSON text, so the frame
+writes to CSV and Parquet unchanged. ``planshape export DIR --to FILE`` writes it.
+
+Example:
+    >>> frame = load("leaderboard/default-v0", final_only=True)  # doctest: +SKIP
+    >>> frame.groupby(["task", "algo", "entry"])["success_rate"].mean()  # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+from typing import Any
+
+from planshape.commands import Handler, subcommand
+from planshape.errors import BadInputError
+from planshape.results import scoring
+
+__all__ = ["FLOAT_COLUMNS", "INT_COLUMNS", "export", "load"]
+
+#: the typed columns of a row (:data:`planshape.results.scoring.INT_COLUMNS` and ``FLOAT_COLUMNS``),
+#: plus the evaluation protocol, which rows carry from protocol 2 on
+INT_COLUMNS = (*scoring.INT_COLUMNS, "eval_protocol")
+FLOAT_COLUMNS = scoring.FLOAT_COLUMNS
+#: the columns a frame starts with, in this order (the rest follow, sorted)
+LEADING = ("run_id", "profile", "task", "entry", "algo", "potential", "model", "seed", "step")
+
+
+def load(out_dir: str | Path, *, final_only: bool = False) -> Any:
+    """The stored rows of ``out_dir`` as a DataFrame (one row per evaluation point, or with
+    ``final_only`` each run's final point), sorted by run and step."""
+    import pandas as pd
+
+    from planshape.results.scoring import load_rows
+
+    rows = load_rows(out_dir)
+    if final_only:
+        rows = [r for r in rows if r["final"]]
+    flat = [_flatten(row) for row in rows]
+    frame = pd.DataFrame.from_records(flat) if flat else pd.DataFrame(columns=list(LEADING))
+    for column in INT_COLUMNS:
+        if column in frame:
+            frame[column] = pd.array(frame[column], dtype="Int64")
+    for column in FLOAT_COLUMNS:
+        if column in frame:
+            frame[column] = pd.to_numeric(frame[column], errors="coerce").astype("float64")
+    if "final" in frame:
+        frame["final"] = frame["final"].astype(bool)
+    for column in frame.columns:
+        if frame[column].dtype == object:
+            frame[column] = frame[column].astype("string")
+    order = [c for c in LEADING if c in frame] + sorted(c for c in frame if c not in LEADING)
+    frame = frame[order]
+    if len(frame):
+        frame = frame.sort_values(["run_id", "step"], kind="stable").reset_index(drop=True)
+    return frame
+
+
+def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for key, value in row.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            out.update(_flatten(value, f"{name}."))
+        elif isinstance(value, list | tuple):
+            out[name] = json.dumps(value)
+        else:
+            out[name] = value
+    return out
+
+
+def export(out_dir: str | Path, path: str | Path, *, final_only: bool = False) -> int:
+    """Write :func:`load`'s frame to ``path`` (``.csv`` or ``.parquet``); return its rows."""
+    path = Path(path)
+    if path.suffix not in (".csv", ".parquet"):
+        raise BadInputError(
+            f"--to {path}: write a .csv or a .parquet file (the format follows the suffix)"
+        )
+    if path.exists() and path.is_dir():
+        raise BadInputError(f"--to {path}: is a folder; name a file")
+    frame = load(out_dir, final_only=final_only)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if path.suffix == ".csv":
+        frame.to_csv(path, index=False)
+    else:
+        frame.to_parquet(path, index=False)
+    return len(frame)
+
+
+@subcommand("export", "write the stored results as one tidy table (CSV or Parquet)")
+def _export(parser: argparse.ArgumentParser) -> Handler:
+    parser.add_argument("out", type=Path, help="a results folder, e.g. leaderboard/default-v0")
+    parser.add_argument("--to", type=Path, required=True, help="FILE.csv or FILE.parquet")
+    parser.add_argument("--final-only", action="store_true", help="each run's final point only")
+    return _run_export
+
+
+def _run_export(args: argparse.Namespace) -> int:
+    n = export(args.out, args.to, final_only=args.final_only)
+    print(f"wrote {n} rows to {args.to}")
+    return 0

@@ -1,0 +1,148 @@
+"""Hyperparameters per task family and algorithm, in one documented place (rl-zoo style).
+
+Every benchmark run of a (task, algorithm) pair uses exactly these settings, whatever the
+reward entry, so entries are compared under equal conditions. γ is the learner's discount and
+is also the shaping γ of every shaped entry (correctness rule 1).
+
+* PPO (planar tasks): 8 environments × 128 steps per update, 10 epochs of minibatch 256,
+  a [64, 64] MLP, learning rate 3e-4, GAE λ 0.95. Modest, standard settings; the same for
+  every entry.
+* SAC (planar tasks), "tuned": a [64, 64] MLP (the defaults' [256, 256] is slow on a CPU and
+  no better here), learning rate 1e-3, batch 256, 1000 random steps first, one gradient step
+  per environment step (four every four steps; the v0 tasks keep one every step, with which
+  their stored runs trained), automatic entropy tuning. The source paper ran SAC with untuned
+  library defaults; ``SAC-default`` reproduces that (stable-baselines3's defaults but γ).
+* MetaWorld and gymnasium-robotics: larger networks and longer episodes (see the table).
+* ``shaping_scale`` (every table, every entry's potential): φ is multiplied by
+  :data:`SHAPING_SCALE` = 1/(1 − γ) = 100. Potentials are written at unit scale (φ changes by
+  about 1 from the plan's start to its end); with γ = 0.99 the sparse reward of a solved
+  continuing task is worth up to 1/(1 − γ), so this makes the shaping as loud as the reward it
+  guides to. At unit scale a critic learns −φ within a few updates and the guidance is gone
+  before the goal is ever seen (PPO on reach at scale 1: 0/5 seeds for every potential). The
+  source paper tuned one multiplier per potential by hand; one rule for every entry,
+  submissions included, keeps the comparison fair. Sparse and dense runs ignore it.
+* ``rescale_observations`` (planar tables): the learner sees the observation mapped from its
+  Box bounds onto [-1, 1] (:func:`planshape.harness.runner.learner_view`; the shaping still reads
+  metres). The raw coordinates span a few tenths of a metre, on which a [64, 64] tanh MLP is
+  nearly affine: on maze-reach, PPO's policy mean was an affine function of the position
+  (up-right everywhere, so the end effector went over the wall and stopped at the
+  workspace's top edge above the goal) and its critic output was 72.0–72.1 at every probed
+  position, so it could neither follow the geodesic nor absorb the potential. Rescaled,
+  h-star-geodesic and plan-distance solved maze-reach on 2/2 seeds each at the default
+  budget, sparse and dense on 0/1. rl-zoo normalizes MuJoCo observations for the same
+  reason. ``SAC-default`` keeps raw observations (the paper's untuned setting); MetaWorld and
+  gymnasium-robotics observations have no finite bounds to rescale from.
+
+Example:
+    >>> settings = hyperparameters("planshape/Reach-v0", "PPO")
+    >>> settings["gamma"], settings["n_envs"]
+    (0.99, 8)
+"""
+
+from __future__ import annotations
+
+import copy
+from typing import Any
+
+from planshape.errors import UnknownIdError
+
+GAMMA = 0.99
+#: the multiplier of every potential in training: 1/(1 − γ), see the module docstring; rounded,
+#: because in floating point 1/(1 − 0.99) is 99.99999999999991 and the runs record 100.0
+SHAPING_SCALE = round(1.0 / (1.0 - GAMMA), 6)
+
+PPO_PLANAR: dict[str, Any] = {
+    "n_envs": 8,
+    "n_steps": 128,
+    "batch_size": 256,
+    "n_epochs": 10,
+    "learning_rate": 3e-4,
+    "gae_lambda": 0.95,
+    "gamma": GAMMA,
+    "shaping_scale": SHAPING_SCALE,
+    "ent_coef": 0.0,
+    "rescale_observations": True,
+    "policy_kwargs": {"net_arch": [64, 64]},
+}
+SAC_PLANAR: dict[str, Any] = {
+    "n_envs": 1,
+    "learning_rate": 1e-3,
+    "batch_size": 256,
+    "buffer_size": 100_000,
+    "learning_starts": 1000,
+    # four gradient steps every four environment steps: one gradient step per step, as with
+    # 1/1, in one compiled call of SBX's (1.8 times the steps/s of 1/1 on Push-v1, measured
+    # side by side)
+    "train_freq": 4,
+    "gradient_steps": 4,
+    "gamma": GAMMA,
+    "shaping_scale": SHAPING_SCALE,
+    "rescale_observations": True,
+    "policy_kwargs": {"net_arch": [64, 64]},
+}
+#: the v0 tasks keep the SAC settings their stored runs were trained with (train_freq 1)
+SAC_PLANAR_V0: dict[str, Any] = {**SAC_PLANAR, "train_freq": 1, "gradient_steps": 1}
+SAC_DEFAULT: dict[str, Any] = {"n_envs": 1, "gamma": GAMMA, "shaping_scale": SHAPING_SCALE}
+PPO_ROBOTICS: dict[str, Any] = {
+    **PPO_PLANAR,
+    "n_steps": 512,
+    "batch_size": 512,
+    "rescale_observations": False,
+    "policy_kwargs": {"net_arch": [256, 256]},
+}
+SAC_ROBOTICS: dict[str, Any] = {
+    **SAC_PLANAR,
+    "learning_rate": 3e-4,
+    "learning_starts": 5000,
+    "rescale_observations": False,
+    "policy_kwargs": {"net_arch": [256, 256]},
+}
+
+#: the planar families: the fixed tasks and their task-instance distributions
+PLANAR_FAMILIES = (
+    "Reach",
+    "Push",
+    "MazeReach",
+    *(f"{f}Randomized" for f in ("Reach", "Push", "MazeReach")),
+)
+
+#: (task family, algorithm) -> settings; the family is the one each task is registered with
+#: ("Reach", "PushRandomized", "MetaWorld", "PointMaze", "FetchReach", ...).
+TABLE: dict[tuple[str, str], dict[str, Any]] = {
+    **{(f, "PPO"): PPO_PLANAR for f in PLANAR_FAMILIES},
+    **{(f, "SAC"): SAC_PLANAR for f in PLANAR_FAMILIES},
+    **{(f, "SAC-default"): SAC_DEFAULT for f in PLANAR_FAMILIES},
+    **{(f, "PPO"): PPO_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
+    **{(f, "SAC"): SAC_ROBOTICS for f in ("MetaWorld", "PointMaze", "FetchReach", "FetchPush")},
+}
+
+
+#: (task id, algorithm) -> settings that take precedence over the family's
+TASK_TABLE: dict[tuple[str, str], dict[str, Any]] = {
+    (f"planshape/{name}-v0", "SAC"): SAC_PLANAR_V0 for name in ("Reach", "Push", "MazeReach")
+}
+
+
+def family(task_id: str) -> str:
+    """The family a task was registered with: ``"planshape/MetaWorld-reach-v3"`` ->
+    ``"MetaWorld"`` (:attr:`planshape.shaping.registration.TaskSpec.family`)."""
+    from planshape.shaping.registration import task_spec
+
+    return task_spec(task_id).family
+
+
+def hyperparameters(task_id: str, algo: str) -> dict[str, Any]:
+    """A fresh copy of the settings of ``algo`` (a learner id, e.g. ``SBX-SAC``, whose table is
+    ``SAC``'s) on ``task_id``."""
+    from planshape.training.learners import learner
+
+    table = learner(algo).table
+    if (task_id, table) in TASK_TABLE:
+        return copy.deepcopy(TASK_TABLE[(task_id, table)])
+    key = (family(task_id), table)
+    if key not in TABLE:
+        known = sorted({f for f, a in TABLE if a == algo})
+        raise UnknownIdError(
+            "task family", key[0], known, hint=f"no {algo} hyperparameters for {task_id}"
+        )
+    return copy.deepcopy(TABLE[key])

@@ -1,0 +1,187 @@
+"""The benchmark end to end: the smoke profile with a submitted potential, resuming, the
+leaderboard, determinism and the Ray executor."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from planshape.cli import main
+from planshape.harness.profiles import RunKey
+from planshape.harness.runner import RunSpec, execute
+from planshape.harness.store import ResultStore
+from planshape.results.scoring import load_rows
+
+SUBMISSION = "tests.submission.example:ProgressAndDistance"
+
+
+@pytest.fixture(scope="module")
+def smoke_out(tmp_path_factory):
+    """One real smoke-profile benchmark with the README's example submission."""
+    out = tmp_path_factory.mktemp("bench")
+    status = main(
+        [
+            "bench",
+            "--profile",
+            "smoke",
+            "--out",
+            str(out),
+            "--workers",
+            "1",
+            "--potential",
+            SUBMISSION,
+        ]
+    )
+    assert status == 0
+    return out
+
+
+def test_smoke_profile_with_a_submission_writes_the_leaderboard(smoke_out):
+    rows = load_rows(smoke_out)
+    entries = {r["entry"] for r in rows}
+    # the profile's three entries, and the submission on every model of the task
+    assert {"sparse", "dense", "plan-based/multi"} <= entries
+    assert {f"{SUBMISSION}/{m}" for m in ("single", "multi", "grid")} <= entries
+    for name in ("LEADERBOARD.md", "index.html", "summary.json"):
+        assert (smoke_out / name).is_file()
+    board = (smoke_out / "LEADERBOARD.md").read_text()
+    assert SUBMISSION in board and "smoke" in board
+    verdicts = {r["entry"]: r["invariance"] for r in rows if r["potential"]}
+    assert set(verdicts.values()) == {"preserved"}
+    # scores come from the task's own metrics at every evaluation point (rule 5): the sparse
+    # reward pays 0 or 1 per step, so a return that included shaping terms would not be whole
+    assert all(0.0 <= r["success_rate"] <= 1.0 and r["final_distance"] >= 0 for r in rows)
+    shaped = [r for r in rows if r["potential"]]
+    totals = [r["sparse_return"] * r["eval_episodes"] for r in shaped]
+    assert shaped and all(abs(total - round(total)) < 1e-9 for total in totals)
+
+
+def test_resume_reruns_nothing_that_finished(smoke_out, capfd):
+    capfd.readouterr()  # what the fixture's first benchmark printed
+    before = sorted(p.name for p in (smoke_out / "runs").glob("*.jsonl"))
+    stamp = {p.name: p.stat().st_mtime_ns for p in (smoke_out / "runs").glob("*.jsonl")}
+    (smoke_out / "runs" / ".deadbeef.killed.tmp").write_text('{"half": ')  # a killed write
+    assert (
+        main(
+            [
+                "bench",
+                "--profile",
+                "smoke",
+                "--out",
+                str(smoke_out),
+                "--workers",
+                "1",
+                "--potential",
+                SUBMISSION,
+            ]
+        )
+        == 0
+    )
+    after = sorted(p.name for p in (smoke_out / "runs").glob("*.jsonl"))
+    assert after == before
+    lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
+    # stored runs take no time and say nothing about the rest: nothing is left to estimate
+    assert len(lines) == len(before) and all(" stored " in line for line in lines), lines
+    assert all(line.endswith("about 0m00s left") for line in lines), lines
+    assert all(p.stat().st_mtime_ns == stamp[p.name] for p in (smoke_out / "runs").glob("*.jsonl"))
+    assert not list((smoke_out / "runs").glob("*.tmp"))
+
+
+def test_leaderboard_command_renders_again(smoke_out, capsys):
+    assert main(["leaderboard", "--out", str(smoke_out), "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert any(row["entry"] == "dense" for row in summary)
+
+
+def test_bad_input_exits_2(tmp_path, capsys):
+    assert main(["bench", "--profile", "nope", "--out", str(tmp_path)]) == 2
+    assert "unknown profile 'nope'" in capsys.readouterr().err
+    assert main(["bench", "--profile", "smoke", "--tasks", "reech", "--out", str(tmp_path)]) == 2
+    assert main(["bench", "--potential", "no_such_module:X", "--out", str(tmp_path)]) == 2
+    assert main(["leaderboard", "--out", str(tmp_path / "empty")]) == 2
+
+
+TINY = RunKey("planshape/Reach-v0", "plan-based/grid", "PPO", 3, 1024)
+
+
+def test_same_spec_same_numbers():
+    spec = RunSpec.create(TINY, "test", eval_every=512, eval_episodes=2)
+    first, second = execute(spec), execute(spec)
+    keep = ("step", "success_rate", "final_distance", "sparse_return")
+    assert [{k: r[k] for k in keep} for r in first] == [{k: r[k] for k in keep} for r in second]
+
+
+def test_ray_executor_gives_the_local_numbers(tmp_path):
+    import ray
+
+    from planshape.suite.session import _execute_on_ray
+
+    spec = RunSpec.create(TINY, "test", eval_every=512, eval_episodes=2)
+    ray.init(num_cpus=1, include_dashboard=False, log_to_driver=False)
+    try:
+        remote_rows = _execute_on_ray(spec, None)
+    finally:
+        ray.shutdown()
+    local_rows = execute(spec)
+    keep = ("step", "success_rate", "final_distance", "sparse_return", "run_id")
+    assert [{k: r[k] for k in keep} for r in remote_rows] == [
+        {k: r[k] for k in keep} for r in local_rows
+    ]
+    ResultStore(tmp_path).write(spec.run_id, remote_rows)
+    assert ResultStore(tmp_path).has(spec.run_id)
+
+
+def test_a_run_keeps_its_identity_through_training():
+    """stable-baselines3 writes into policy_kwargs; the spec (and so the run id under which a
+    finished run is stored and found again) must not change."""
+    spec = RunSpec.create(RunKey("planshape/Reach-v0", "sparse", "SAC", 0, 64), "test", 64, 1)
+    before = spec.run_id
+    rows = execute(spec)
+    assert spec.run_id == before == rows[0]["run_id"]
+
+
+def test_runs_at_a_budget_the_profile_no_longer_uses_are_kept_but_not_shown(smoke_out, tmp_path):
+    """After a budget changes, the runs stored at the old one stay in the store and out of the
+    cells: the leaderboard names them in its caveats instead of mixing two budgets."""
+    import shutil
+
+    out = tmp_path / "board"
+    shutil.copytree(smoke_out / "runs", out / "runs")
+    source = next(p for p in sorted((out / "runs").glob("*.jsonl")) if '"sparse"' in p.read_text())
+    rows = [json.loads(line) for line in source.read_text().splitlines()]
+    for row in rows:
+        row["budget"], row["run_id"], row["seed"] = 2048, "0000old0budget00", 7
+    (out / "runs" / "0000old0budget00.jsonl").write_text(
+        "".join(json.dumps(row) + "\n" for row in rows)
+    )
+    assert main(["leaderboard", "--out", str(out), "--json"]) == 0
+    board = (out / "LEADERBOARD.md").read_text()
+    assert "1 stored runs at budgets this profile no longer uses" in board
+    assert "runs/0000old0budget00.jsonl, 2,048 steps" in board
+    summary = json.loads((out / "summary.json").read_text())
+    sparse = [c for c in summary["per_task"] if c["entry"] == "sparse"]
+    assert [(c["n_seeds"], c["budget"]) for c in sparse] == [(1, 4096)]
+
+
+def test_a_profile_with_runs_missing_says_it_is_partial(smoke_out, tmp_path):
+    import shutil
+
+    out = tmp_path / "board"
+    shutil.copytree(smoke_out / "runs", out / "runs")
+    next(p for p in (out / "runs").glob("*.jsonl") if '"dense"' in p.read_text()).unlink()
+    assert main(["leaderboard", "--out", str(out), "--json"]) == 0
+    assert "partial: 2 of the profile's 3 runs are stored" in (out / "LEADERBOARD.md").read_text()
+    assert main(["leaderboard", "--out", str(smoke_out), "--json"]) == 0
+    assert "partial" not in (smoke_out / "LEADERBOARD.md").read_text()
+
+
+def test_a_k_selection_counts_and_estimates_only_its_own_runs(tmp_path, capfd):
+    out = tmp_path / "one"
+    assert (
+        main(["bench", "--profile", "smoke", "--out", str(out), "--workers", "1", "-k", "sparse"])
+        == 0
+    )
+    lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
+    assert len(lines) == 1 and lines[0].startswith("[1/1] done")
+    assert lines[0].endswith("about 0m00s left")

@@ -1,0 +1,74 @@
+"""``planshape probe``: one benchmark run, trained in chunks, with the learner's statistics."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from planshape.cli import main
+from planshape.errors import BadInputError
+from planshape.harness.probe import format_rows, probe
+from planshape.harness.profiles import RunKey
+
+
+def test_rows_per_chunk_with_plan_progress_and_critic_fit():
+    rows = probe(RunKey("planshape/Reach-v0", "plan-distance/grid", "PPO", 0, 2048), 2, 1)
+    assert [row["step"] for row in rows] == [1024, 2048]
+    for row in rows:
+        # 1024 steps = 128 in each of 8 environments: three 40-step episodes end in each
+        assert row["train_episodes"] == 8 * 3
+        assert row["plan_length"] == 13  # the reach grid plan: 13 cells to the goal
+        assert 0 <= row["progress"] <= 13
+        assert 0 < row["train_distance"] < 1 and row["train_success"] == 0.0
+        assert row["explained_variance"] is not None and 0 < row["action_std"] <= 1.01
+        assert row["eval_success"] in (0.0, 1.0)
+    assert format_rows(rows).splitlines()[0].split()[:3] == ["step", "train", "dist"]
+
+
+def test_unshaped_entries_have_no_progress(capsys):
+    assert (
+        main(
+            [
+                "probe",
+                "planshape/Reach-v0",
+                "dense",
+                "--budget",
+                "1024",
+                "--chunks",
+                "1",
+                "--episodes",
+                "1",
+                "--json",
+            ]
+        )
+        == 0
+    )
+    (row,) = json.loads(capsys.readouterr().out)
+    assert row["progress"] is None and row["plan_length"] is None
+
+
+def test_chunks_must_fit_the_budget():
+    with pytest.raises(BadInputError, match="--chunks must be between 1 and the budget"):
+        probe(RunKey("planshape/Reach-v0", "dense", "PPO", 0, 10), chunks=20)
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (
+            ["push", "nope"],
+            "write sparse, dense or POTENTIAL/MODEL with a model of planshape/Push-v1",
+        ),
+        (["reach", "foo/grid"], "unknown potential 'foo'"),
+        (["rech", "dense"], "unknown task 'rech'"),
+        (["reach", "dense", "--algo", "XYZ"], "unknown algorithm 'XYZ'"),
+        (["reach", "dense", "--budget", "0"], "--budget and --episodes ≥ 1"),
+    ],
+)
+def test_bad_probe_input_exits_2_before_training(capsys, argv, message):
+    from planshape.cli import main
+
+    assert main(["probe", *argv]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err

@@ -1,0 +1,45 @@
+"""The benchmark's helper scripts and provenance: the speed scripts run end to end on tiny
+inputs (their figures are not asserted: speed goals are read from their output, never timed in
+tests), and the code version a run records."""
+
+from __future__ import annotations
+
+import math
+
+from planshape.perf import shaping as perf_shaping
+from planshape.perf import training as perf_training
+
+
+def test_training_throughput_script_trains_a_shaped_learner():
+    rate = perf_training.steps_per_second("planshape/Reach-v0", "plan-based/grid", "PPO", 1024)
+    assert math.isfinite(rate) and rate > 0
+
+
+def test_shaping_overhead_script_measures_a_planar_task():
+    row = perf_shaping.measure("planshape/Reach-v0", "plan-based", "grid", steps=200, repeats=1)
+    assert row["task"] == "planshape/Reach-v0"
+
+
+def test_code_version_ignores_the_benchmarks_own_results(tmp_path, monkeypatch):
+    """Results written under leaderboard/ do not mark the code -dirty; a code change does."""
+    import subprocess
+
+    from planshape.harness.runner import code_version
+
+    def git(*args):
+        subprocess.run(["git", *args], cwd=tmp_path, check=True, capture_output=True)
+
+    git("init", "-q")
+    (tmp_path / "leaderboard").mkdir()
+    (tmp_path / "leaderboard" / "run.jsonl").write_text("{}\n")
+    (tmp_path / "code.py").write_text("x = 1\n")
+    git("add", ".")
+    git("-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "init")
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "leaderboard" / "run.jsonl").write_text("{}\n{}\n")
+    code_version.cache_clear()  # cached per process
+    assert not code_version().endswith("-dirty")
+    (tmp_path / "code.py").write_text("x = 2\n")
+    code_version.cache_clear()
+    assert code_version().endswith("-dirty")
+    code_version.cache_clear()
