@@ -1,4 +1,4 @@
-"""Hyperparameters per task family and algorithm, in one documented place (rl-zoo style).
+"""Hyperparameters per task family and algorithm: typed, documented tables (rl-zoo style).
 
 Every benchmark run of a (task, algorithm) pair uses exactly these settings, whatever the
 reward entry, so entries are compared under equal conditions. γ is the learner's discount and
@@ -33,6 +33,12 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   reason. ``SAC-default`` keeps raw observations (the paper's untuned setting); MetaWorld and
   gymnasium-robotics observations have no finite bounds to rescale from.
 
+Each table is a frozen dataclass (:class:`PPOSettings`, :class:`SACSettings`) whose fields
+carry their documentation (``dataclasses.fields(PPOSettings)[i].metadata["doc"]``); a run
+records :meth:`Settings.as_dict`, the fields that are not ``None``, which is also what its id
+hashes (the tables were plain dicts before; the serialisation is the same, so no stored run id
+changed, and a test checks every committed run).
+
 Example:
     >>> settings = hyperparameters("planshape/Reach-v0", "PPO")
     >>> settings["gamma"], settings["n_envs"]
@@ -42,6 +48,8 @@ Example:
 from __future__ import annotations
 
 import copy
+import dataclasses
+from dataclasses import dataclass, field
 from typing import Any
 
 from planshape.errors import UnknownIdError
@@ -51,52 +59,123 @@ GAMMA = 0.99
 #: because in floating point 1/(1 − 0.99) is 99.99999999999991 and the runs record 100.0
 SHAPING_SCALE = round(1.0 / (1.0 - GAMMA), 6)
 
-PPO_PLANAR: dict[str, Any] = {
-    "n_envs": 8,
-    "n_steps": 128,
-    "batch_size": 256,
-    "n_epochs": 10,
-    "learning_rate": 3e-4,
-    "gae_lambda": 0.95,
-    "gamma": GAMMA,
-    "shaping_scale": SHAPING_SCALE,
-    "ent_coef": 0.0,
-    "rescale_observations": True,
-    "policy_kwargs": {"net_arch": [64, 64]},
-}
-SAC_PLANAR: dict[str, Any] = {
-    "n_envs": 1,
-    "learning_rate": 1e-3,
-    "batch_size": 256,
-    "buffer_size": 100_000,
-    "learning_starts": 1000,
+
+def setting(doc: str, default: Any = None) -> Any:
+    """A documented field of a settings table; ``None``: the library's default, not recorded.
+
+    Example:
+        >>> dataclasses.fields(PPOSettings)[0].metadata["doc"]
+        'parallel environments of one run (a DummyVecEnv, each with its own shaping wrapper)'
+    """
+    return field(default=default, metadata={"doc": doc})
+
+
+@dataclass(frozen=True)
+class Settings:
+    """A hyperparameter table: typed, documented fields, serialised into each run's identity.
+
+    :meth:`as_dict` is what a run records (and its id hashes): every field that is not
+    ``None``, under the field's name, so a table written as a dataclass gives the very dict the
+    stored runs were made with. Subclasses add the algorithm's fields; :meth:`replace` derives
+    a variant.
+
+    Example:
+        >>> PPO_PLANAR.as_dict()["n_steps"], PPO_PLANAR.replace(n_steps=512).as_dict()["n_steps"]
+        (128, 512)
+        >>> "learning_rate" in SAC_DEFAULT.as_dict()  # None: the library's default, not recorded
+        False
+    """
+
+    n_envs: int = setting(
+        "parallel environments of one run (a DummyVecEnv, each with its own shaping wrapper)", 1
+    )
+    gamma: float = setting("the learner's discount, also the shaping γ (correctness rule 1)", GAMMA)
+    shaping_scale: float = setting(
+        "φ's multiplier in training, 1/(1 − γ) (see the module docstring); sparse and dense "
+        "runs ignore it",
+        SHAPING_SCALE,
+    )
+    rescale_observations: bool | None = setting(
+        "the learner sees the observation mapped from its Box bounds onto [-1, 1]"
+    )
+    learning_rate: float | None = setting("the optimiser's step size")
+    batch_size: int | None = setting("minibatch size of one gradient step")
+    policy_kwargs: dict[str, Any] | None = setting(  # noqa: RUF009 (a dataclasses.field)
+        "the networks: net_arch, the hidden layer sizes of the actor and the critic"
+    )
+
+    def as_dict(self) -> dict[str, Any]:
+        """The settings a run records: every field that is not ``None``, deep-copied."""
+        return {
+            f.name: copy.deepcopy(getattr(self, f.name))
+            for f in dataclasses.fields(self)
+            if getattr(self, f.name) is not None
+        }
+
+    def replace(self, **changes: Any) -> Any:
+        """A copy with ``changes`` (field names) applied."""
+        return dataclasses.replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class PPOSettings(Settings):
+    """PPO's table (stable-baselines3's ``PPO`` and SBX's)."""
+
+    n_steps: int | None = setting(
+        "steps per environment per rollout: an update every n_envs × n_steps steps"
+    )
+    n_epochs: int | None = setting("passes over each rollout")
+    gae_lambda: float | None = setting("GAE's λ")
+    ent_coef: float | None = setting("the entropy bonus's coefficient")
+
+
+@dataclass(frozen=True)
+class SACSettings(Settings):
+    """SAC's table (stable-baselines3's ``SAC``, SBX's, and the SBX learners that share it)."""
+
+    buffer_size: int | None = setting("replay buffer capacity (transitions)")
+    learning_starts: int | None = setting("uniformly random steps before the first update")
+    train_freq: int | None = setting("environment steps between gradient phases")
+    gradient_steps: int | None = setting("gradient steps per phase")
+
+
+PPO_PLANAR = PPOSettings(
+    n_envs=8,
+    n_steps=128,
+    batch_size=256,
+    n_epochs=10,
+    learning_rate=3e-4,
+    gae_lambda=0.95,
+    ent_coef=0.0,
+    rescale_observations=True,
+    policy_kwargs={"net_arch": [64, 64]},
+)
+SAC_PLANAR = SACSettings(
+    learning_rate=1e-3,
+    batch_size=256,
+    buffer_size=100_000,
+    learning_starts=1000,
     # four gradient steps every four environment steps: one gradient step per step, as with
     # 1/1, in one compiled call of SBX's (1.8 times the steps/s of 1/1 on Push-v1, measured
     # side by side)
-    "train_freq": 4,
-    "gradient_steps": 4,
-    "gamma": GAMMA,
-    "shaping_scale": SHAPING_SCALE,
-    "rescale_observations": True,
-    "policy_kwargs": {"net_arch": [64, 64]},
-}
+    train_freq=4,
+    gradient_steps=4,
+    rescale_observations=True,
+    policy_kwargs={"net_arch": [64, 64]},
+)
 #: the v0 tasks keep the SAC settings their stored runs were trained with (train_freq 1)
-SAC_PLANAR_V0: dict[str, Any] = {**SAC_PLANAR, "train_freq": 1, "gradient_steps": 1}
-SAC_DEFAULT: dict[str, Any] = {"n_envs": 1, "gamma": GAMMA, "shaping_scale": SHAPING_SCALE}
-PPO_ROBOTICS: dict[str, Any] = {
-    **PPO_PLANAR,
-    "n_steps": 512,
-    "batch_size": 512,
-    "rescale_observations": False,
-    "policy_kwargs": {"net_arch": [256, 256]},
-}
-SAC_ROBOTICS: dict[str, Any] = {
-    **SAC_PLANAR,
-    "learning_rate": 3e-4,
-    "learning_starts": 5000,
-    "rescale_observations": False,
-    "policy_kwargs": {"net_arch": [256, 256]},
-}
+SAC_PLANAR_V0 = SAC_PLANAR.replace(train_freq=1, gradient_steps=1)
+#: the source paper's untuned SAC: the library's defaults, but γ (and the shaping scale)
+SAC_DEFAULT = SACSettings()
+PPO_ROBOTICS = PPO_PLANAR.replace(
+    n_steps=512, batch_size=512, rescale_observations=False, policy_kwargs={"net_arch": [256, 256]}
+)
+SAC_ROBOTICS = SAC_PLANAR.replace(
+    learning_rate=3e-4,
+    learning_starts=5000,
+    rescale_observations=False,
+    policy_kwargs={"net_arch": [256, 256]},
+)
 
 #: the planar families: the fixed tasks and their task-instance distributions
 PLANAR_FAMILIES = (
@@ -108,7 +187,7 @@ PLANAR_FAMILIES = (
 
 #: (task family, algorithm) -> settings; the family is the one each task is registered with
 #: ("Reach", "PushRandomized", "MetaWorld", "PointMaze", "FetchReach", ...).
-TABLE: dict[tuple[str, str], dict[str, Any]] = {
+TABLE: dict[tuple[str, str], Settings] = {
     **{(f, "PPO"): PPO_PLANAR for f in PLANAR_FAMILIES},
     **{(f, "SAC"): SAC_PLANAR for f in PLANAR_FAMILIES},
     **{(f, "SAC-default"): SAC_DEFAULT for f in PLANAR_FAMILIES},
@@ -118,7 +197,7 @@ TABLE: dict[tuple[str, str], dict[str, Any]] = {
 
 
 #: (task id, algorithm) -> settings that take precedence over the family's
-TASK_TABLE: dict[tuple[str, str], dict[str, Any]] = {
+TASK_TABLE: dict[tuple[str, str], Settings] = {
     (f"planshape/{name}-v0", "SAC"): SAC_PLANAR_V0 for name in ("Reach", "Push", "MazeReach")
 }
 
@@ -138,11 +217,11 @@ def hyperparameters(task_id: str, algo: str) -> dict[str, Any]:
 
     table = learner(algo).table
     if (task_id, table) in TASK_TABLE:
-        return copy.deepcopy(TASK_TABLE[(task_id, table)])
+        return TASK_TABLE[(task_id, table)].as_dict()
     key = (family(task_id), table)
     if key not in TABLE:
         known = sorted({f for f, a in TABLE if a == algo})
         raise UnknownIdError(
             "task family", key[0], known, hint=f"no {algo} hyperparameters for {task_id}"
         )
-    return copy.deepcopy(TABLE[key])
+    return TABLE[key].as_dict()

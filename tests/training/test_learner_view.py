@@ -64,7 +64,7 @@ def test_training_and_evaluation_see_the_same_view():
 def test_every_table_that_rescales_has_bounded_observations():
     checked = 0
     for (family, _algo), settings in TABLE.items():
-        if not settings.get("rescale_observations"):
+        if not settings.rescale_observations:
             continue
         for task in PLANAR:
             if task_spec(task).id.split("/")[1].startswith(family):

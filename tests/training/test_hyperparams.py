@@ -1,0 +1,60 @@
+"""The hyperparameter tables: typed, documented dataclasses whose serialisation is exactly what
+the stored runs recorded, so that their run ids do not change."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from pathlib import Path
+
+import pytest
+
+from planshape.harness.profiles import PROFILES, RunKey
+from planshape.harness.runner import RunSpec
+from planshape.training import hyperparams
+from planshape.training.hyperparams import (
+    PPOSettings,
+    SACSettings,
+    Settings,
+    hyperparameters,
+)
+
+ROOT = Path(__file__).resolve().parents[2]
+#: the committed folders of protocol-2 runs (the archived v0 profiles are checked by
+#: tests/harness/test_evaluation.py with protocol 1)
+FOLDERS = ("leaderboard/runs", "leaderboard/planar/runs")
+
+
+@pytest.mark.parametrize("table", [Settings, PPOSettings, SACSettings])
+def test_every_setting_is_documented(table):
+    for setting in dataclasses.fields(table):
+        assert setting.metadata.get("doc"), f"{table.__name__}.{setting.name} has no doc"
+
+
+def test_every_table_is_a_typed_settings_object():
+    assert hyperparams.TABLE and hyperparams.TASK_TABLE
+    for settings in (*hyperparams.TABLE.values(), *hyperparams.TASK_TABLE.values()):
+        assert isinstance(settings, Settings)
+    ppo = hyperparams.PPO_PLANAR.as_dict()
+    ppo["n_steps"] = 1  # a fresh copy: the table itself is never changed
+    assert hyperparams.PPO_PLANAR.n_steps == 128
+    assert hyperparams.SAC_DEFAULT.as_dict() == {"n_envs": 1, "gamma": 0.99, "shaping_scale": 100.0}
+
+
+def _first_rows() -> list[tuple[Path, dict]]:
+    rows = []
+    for folder in FOLDERS:
+        for path in sorted((ROOT / folder).glob("*.jsonl")):
+            rows.append((path, json.loads(path.read_text().split("\n", 1)[0])))
+    return rows
+
+
+def test_the_tables_give_every_stored_run_its_settings_and_its_id():
+    rows = _first_rows()
+    assert len(rows) >= 300
+    for path, row in rows:
+        profile = PROFILES[row["profile"]]
+        key = RunKey(row["task"], row["entry"], row["algo"], row["seed"], row["budget"])
+        assert hyperparameters(key.task, key.algo) == row["hyperparameters"], path.name
+        spec = RunSpec.create(key, profile.name, profile.eval_every, profile.eval_episodes)
+        assert spec.run_id == row["run_id"] == path.stem, path.name
