@@ -64,18 +64,13 @@ from typing import Any
 
 import numpy as np
 
+from planshape.baselines.common import IdentityCache, point_distance
 from planshape.errors import BadInputError, PotentialError
 from planshape.planning.grounding import ground_task
 from planshape.planning.relaxed import h_add, h_ff, h_max
 from planshape.planning.statespace import DEFAULT_MAX_STATES, GoalDistances
 from planshape.shaping.abstraction import Abstraction, AtomEvaluator
-from planshape.shaping.potentials import (
-    IdentityCache,
-    Potential,
-    ShapingContext,
-    StepPotential,
-    point_distance,
-)
+from planshape.shaping.potentials import Potential, ShapingContext, StepPotential
 
 __all__ = ["HEURISTICS", "HStarGeodesic", "HeuristicPotential", "ModelBinding"]
 

@@ -27,7 +27,8 @@ from typing import Any
 
 import numpy as np
 
-from planshape.shaping.potentials import Potential, ShapingContext, StepPotential, point_distance
+from planshape.baselines.common import point_distance
+from planshape.shaping.potentials import Potential, ShapingContext, StepPotential
 
 
 def _fraction_done(ctx: ShapingContext, normalize: bool) -> float:

@@ -43,14 +43,8 @@ from typing import Any
 
 import numpy as np
 
-from planshape.shaping.potentials import (
-    Geometry,
-    IdentityCache,
-    Potential,
-    ShapingContext,
-    StepPotential,
-    point_distance,
-)
+from planshape.baselines.common import IdentityCache, point_distance
+from planshape.shaping.potentials import Geometry, Potential, ShapingContext, StepPotential
 
 __all__ = ["PlanDistance", "step_targets"]
 

@@ -45,15 +45,9 @@ from typing import Any
 
 import numpy as np
 
+from planshape.baselines.common import IdentityCache, point_distance
 from planshape.errors import PotentialError
-from planshape.shaping.potentials import (
-    Geometry,
-    IdentityCache,
-    Potential,
-    ShapingContext,
-    StepPotential,
-    point_distance,
-)
+from planshape.shaping.potentials import Geometry, Potential, ShapingContext, StepPotential
 
 __all__ = ["PlanPath", "Polyline", "chain_distance", "chained_entities", "entity_path"]
 
