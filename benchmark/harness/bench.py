@@ -280,8 +280,10 @@ def _leaderboard(parser: argparse.ArgumentParser) -> Handler:
 
 
 def run_leaderboard(args: argparse.Namespace) -> int:
+    from planshape.results.cells import summarize
     from planshape.results.leaderboard import render_leaderboard, summary_table
-    from planshape.results.scoring import json_ready, load_rows, summarize
+    from planshape.results.render import json_ready
+    from planshape.results.rows import load_rows
 
     rows = load_rows(args.out)
     if not rows:

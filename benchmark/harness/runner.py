@@ -52,6 +52,7 @@ import numpy as np
 
 from planshape.errors import BadInputError
 from planshape.harness.profiles import RESULTS_ROOT, RunKey
+from planshape.results.rows import StoredRow, validate_row
 from planshape.shaping.registration import instance_set, task_spec
 from planshape.training.hyperparams import hyperparameters
 
@@ -326,7 +327,7 @@ def execute(spec: RunSpec, tensorboard: str | None = None) -> list[dict[str, Any
     return train(spec, tensorboard)[1]
 
 
-def train(spec: RunSpec, tensorboard: str | None = None) -> tuple[Any, list[dict[str, Any]]]:
+def train(spec: RunSpec, tensorboard: str | None = None) -> tuple[Any, list[StoredRow]]:
     """Train and evaluate one run: the trained learner and the run's rows (:func:`execute`,
     which stores the rows; :mod:`planshape.results.videos` renders the learner's policy). With
     ``tensorboard`` (a folder), the run also logs there
@@ -408,7 +409,10 @@ def train(spec: RunSpec, tensorboard: str | None = None) -> tuple[Any, list[dict
         "gamma": gamma,
     }
     last = len(points) - 1
-    return model, [
-        {**provenance, "step": step, "final": i == last, **metrics}
+    rows: list[StoredRow] = [
+        {**provenance, "step": step, "final": i == last, **metrics}  # type: ignore[typeddict-item]
         for i, (step, metrics) in enumerate(points)
     ]
+    for row in rows:  # the schema the loader checks, checked where rows are made
+        validate_row(row, f"run {spec.run_id}")
+    return model, rows

@@ -13,9 +13,9 @@ Example:
     >>> store.path("abc").name
     'abc.jsonl'
 
-A file counts as a finished run only if :func:`planshape.results.scoring.read_run` reads it as a
+A file counts as a finished run only if :func:`planshape.results.rows.read_run` reads it as a
 whole run; reading every run back, with those checks, is
-:func:`planshape.results.scoring.load_rows`. A temporary file carries the id of the process writing
+:func:`planshape.results.rows.load_rows`. A temporary file carries the id of the process writing
 it, so a starting benchmark removes only those of processes that are gone, never another live
 benchmark's.
 """
@@ -53,9 +53,9 @@ class ResultStore:
 
     def read(self, path: Path) -> list[dict[str, Any]]:
         """The rows of a stored run file, checked to be one whole run of the id in its name
-        (:func:`planshape.results.scoring.read_run`), else
+        (:func:`planshape.results.rows.read_run`), else
         :class:`planshape.errors.ResultsError`."""
-        from planshape.results.scoring import read_run
+        from planshape.results.rows import read_run
 
         rows = read_run(path)
         if rows[0]["run_id"] != path.stem:

@@ -1,11 +1,21 @@
 """Results: stored runs read as data, scored, and rendered as the leaderboard.
 
-* :mod:`~planshape.results.frame` — :func:`load`: every stored evaluation row as one tidy
-  pandas DataFrame (``planshape export``);
-* :mod:`~planshape.results.scoring` — aggregation: IQM, bootstrap intervals, normalized
-  scores, the cells of the leaderboard;
-* :mod:`~planshape.results.leaderboard` — ``planshape leaderboard``: Markdown, HTML, JSON;
-* :mod:`~planshape.results.figures` — the leaderboard's plots;
+By job, around the typed row (:class:`~planshape.results.rows.StoredRow`):
+
+* :mod:`~planshape.results.rows` — the row schema, defined once; reading and checking run files;
+* :mod:`~planshape.results.frame` — :func:`load`: every stored row as one tidy pandas DataFrame
+  (``planshape export``);
+* :mod:`~planshape.results.stats` — statistics, pure functions on arrays: IQM, stratified
+  bootstrap intervals, probability of improvement, normalized scores, curve areas;
+* :mod:`~planshape.results.cells` — runs grouped into cells (task, algorithm, entry) and scored:
+  :func:`~planshape.results.cells.summarize`, :func:`~planshape.results.cells.aggregate`;
+* :mod:`~planshape.results.provenance` — how the results were produced, and the caveats;
+* :mod:`~planshape.results.tables` — the leaderboard's tables as data (numbers become text here);
+* :mod:`~planshape.results.page` — one page model of the leaderboard;
+* :mod:`~planshape.results.render` — that page as Markdown and, through jinja2 templates, HTML;
+* :mod:`~planshape.results.figures`, :mod:`~planshape.results.plots` — the plots;
+* :mod:`~planshape.results.leaderboard` — :func:`~planshape.results.leaderboard.render_leaderboard`:
+  ``LEADERBOARD.md``, ``index.html``, ``summary.json`` and the plots of a results folder;
 * :mod:`~planshape.results.videos` — ``planshape render``: a run's policy as an animation.
 
 Example:

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from planshape.harness.store import write_atomic
-from planshape.results.scoring import REFERENCE_ENTRIES
+from planshape.results.cells import REFERENCE_ENTRIES
 
 __all__ = [
     "FAMILY_COLORS",

@@ -1,7 +1,7 @@
 """Results as data: every stored evaluation row as one tidy pandas DataFrame.
 
 ``load(DIR)`` reads ``DIR/runs/*.jsonl`` through the store's checks
-(:func:`planshape.results.scoring.load_rows`: a damaged or unfinished run file is an error naming
+(:func:`planshape.results.rows.load_rows`: a damaged or unfinished run file is an error naming
 it) and returns one row per evaluation point, with nested fields flattened into dotted columns
 (``hyperparameters.learning_rate``, ``packages.torch``) and typed columns: integers for ``seed``,
 ``step``, ``budget``, ``eval_episodes``; floats for the metrics; strings for ids; ``final`` a
@@ -22,14 +22,14 @@ from typing import Any
 
 from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
-from planshape.results import scoring
+from planshape.results import rows as schema
 
 __all__ = ["FLOAT_COLUMNS", "INT_COLUMNS", "export", "load"]
 
-#: the typed columns of a row (:data:`planshape.results.scoring.INT_COLUMNS` and ``FLOAT_COLUMNS``),
-#: plus the evaluation protocol, which rows carry from protocol 2 on
-INT_COLUMNS = (*scoring.INT_COLUMNS, "eval_protocol")
-FLOAT_COLUMNS = scoring.FLOAT_COLUMNS
+#: the typed columns of a row (:data:`planshape.results.rows.FIELDS` of type ``int`` and
+#: ``float``; the evaluation protocol is one, which rows carry from protocol 2 on)
+INT_COLUMNS = tuple(f.name for f in schema.FIELDS if f.type is int)
+FLOAT_COLUMNS = tuple(f.name for f in schema.FIELDS if f.type is float)
 #: the columns a frame starts with, in this order (the rest follow, sorted)
 LEADING = ("run_id", "profile", "task", "entry", "algo", "potential", "model", "seed", "step")
 
@@ -39,9 +39,7 @@ def load(out_dir: str | Path, *, final_only: bool = False) -> Any:
     ``final_only`` each run's final point), sorted by run and step."""
     import pandas as pd
 
-    from planshape.results.scoring import load_rows
-
-    rows = load_rows(out_dir)
+    rows = schema.load_rows(out_dir)
     if final_only:
         rows = [r for r in rows if r["final"]]
     flat = [_flatten(row) for row in rows]

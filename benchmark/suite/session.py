@@ -205,7 +205,7 @@ class BenchSession:
     def finish(self) -> str:
         """Render the leaderboard from every stored row; return the terminal summary."""
         from planshape.results.leaderboard import render_leaderboard, summary_table
-        from planshape.results.scoring import load_rows
+        from planshape.results.rows import load_rows
 
         rows = load_rows(self.out) if self.store.runs.is_dir() else []
         if not rows:

@@ -11,7 +11,7 @@ from planshape.cli import main
 from planshape.harness.profiles import RunKey
 from planshape.harness.runner import RunSpec, execute
 from planshape.harness.store import ResultStore
-from planshape.results.scoring import load_rows
+from planshape.results.rows import load_rows
 
 SUBMISSION = "tests.submission.example:ProgressAndDistance"
 

@@ -7,8 +7,9 @@ import re
 
 import pytest
 
-from planshape.results.leaderboard import render_leaderboard, slug, summary_table
-from planshape.results.scoring import ResultsError
+from planshape.errors import ResultsError
+from planshape.results.leaderboard import render_leaderboard, summary_table
+from planshape.results.tables import slug
 from tests.results.synthetic import make_run, synthetic_rows
 
 HEADER = {

@@ -1,4 +1,5 @@
-"""Scoring statistics against hand values and rliable's definitions; loading result rows."""
+"""Scoring: the statistics against hand values and rliable's definitions; loading result rows;
+the cells' tables and the provenance."""
 
 from __future__ import annotations
 
@@ -11,16 +12,14 @@ import pytest
 import scipy.stats
 
 from planshape.errors import BadInputError, ResultsError
-from planshape.results.scoring import (
-    COLUMNS,
+from planshape.results.cells import aggregate, final_rows, summarize
+from planshape.results.provenance import describe_runs
+from planshape.results.rows import COLUMNS, load_rows, validate_row
+from planshape.results.stats import (
     Interval,
-    aggregate,
     curve_area,
-    describe_runs,
-    final_rows,
     iqm,
     learning_curve,
-    load_rows,
     mean,
     normalized_score,
     percentile_interval,
@@ -28,8 +27,6 @@ from planshape.results.scoring import (
     probability_of_improvement_ci,
     stratified_bootstrap,
     stratified_bootstrap_ci,
-    summarize,
-    validate_row,
 )
 from tests.results.synthetic import make_run, synthetic_rows
 

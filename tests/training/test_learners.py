@@ -42,7 +42,7 @@ def test_an_sbx_run_is_reproducible_and_records_its_backend(algo: str) -> None:
 
 
 def test_backends_are_different_cells() -> None:
-    from planshape.results.scoring import summarize
+    from planshape.results.cells import summarize
     from tests.results.synthetic import make_run
 
     rows = make_run(algo="SAC", seed=0) + make_run(algo="SBX-SAC", seed=0)

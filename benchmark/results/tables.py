@@ -1,0 +1,370 @@
+"""Tables: the leaderboard's tables as data, and the one place where numbers become text.
+
+A :class:`Table` is headings and rows of :class:`Cell` (its text, the number it sorts by and
+whether it is code); :mod:`planshape.results.render` writes it as Markdown or HTML. The
+tables are :func:`task_table` (one cell per entry of a task and algorithm, ranked by IQM final
+success), :func:`aggregate_table` (over tasks), :func:`setup_table`, :func:`budget_table` and
+:func:`hyperparameter_table`. Numbers are formatted by :func:`number` and :func:`interval`.
+
+Example:
+    >>> number(0.12345), number(float("nan")), number(-0.0001, 2)
+    ('0.123', 'n/a', '0.00')
+    >>> interval({"x": 0.5, "x_low": 0.25, "x_high": 0.75, "n_seeds": 5}, "x", 2)
+    '0.50 [0.25, 0.75]'
+    >>> interval({"x": 0.5, "x_low": 0.25, "x_high": 0.75, "n_seeds": 3}, "x", 2)
+    '0.50 (n=3: no CI)'
+    >>> slug("planshape/Reach-v0")
+    'planshape-Reach-v0'
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, ClassVar, Literal
+
+from planshape.results.cells import DENSE, SPARSE
+
+__all__ = [
+    "CI_LABEL",
+    "MIN_CI_SEEDS",
+    "Cell",
+    "Table",
+    "aggregate_table",
+    "budget_table",
+    "by_task_and_algo",
+    "caveats",
+    "entry_order",
+    "hyperparameter_table",
+    "interval",
+    "missing",
+    "number",
+    "packages_text",
+    "ranked_aggregate",
+    "setup_table",
+    "slug",
+    "task_table",
+]
+
+#: the fewest seeds whose bootstrap interval is shown: with 2-4 seeds a percentile bootstrap
+#: returns [min, max] or a zero-width interval, which says nothing about the uncertainty
+MIN_CI_SEEDS = 5
+CI_LABEL = "[95% CI]"
+
+Summary = Mapping[str, Any]
+
+
+@dataclass(frozen=True)
+class Cell:
+    """One cell: its text, the number it sorts by (None: sorted as text) and whether the text
+    is code (an entry's name, a command)."""
+
+    text: str
+    value: float | None = None
+    code: bool = False
+
+
+@dataclass(frozen=True)
+class Table:
+    """Headings and rows of cells. ``sortable``: the HTML page sorts it by a clicked column;
+    ``keyed``: a table of (label, text) pairs, whose labels head their rows. A table is a block
+    of a page (:mod:`planshape.results.page`); ``only`` names the one medium it appears in."""
+
+    kind: ClassVar[str] = "table"
+    headings: tuple[str, ...]
+    rows: tuple[tuple[Cell, ...], ...]
+    sortable: bool = False
+    keyed: bool = False
+    only: Literal["markdown", "html"] | None = None
+
+
+def slug(task: str) -> str:
+    """A file-name-safe form of a task id."""
+    return re.sub(r"[^A-Za-z0-9._-]+", "-", task).strip("-") or "task"
+
+
+# --------------------------------------------------------------------------------------------
+# Numbers as text
+# --------------------------------------------------------------------------------------------
+
+
+def missing(x: Any) -> bool:
+    """None or NaN: a number that is not there."""
+    return x is None or (isinstance(x, float) and math.isnan(x))
+
+
+def number(x: Any, digits: int = 3) -> str:
+    """``x`` with ``digits`` decimals, ``n/a`` when missing, never ``-0.000``."""
+    if missing(x):
+        return "n/a"
+    text = f"{x:.{digits}f}"
+    return text[1:] if text.startswith("-") and not text.strip("-0.") else text
+
+
+def interval(row: Summary, column: str, digits: int = 3) -> str:
+    """``value [low, high]``; with fewer than :data:`MIN_CI_SEEDS` seeds (per task, for an
+    aggregate) the interval is not shown but marked ``(n=2: no CI)``."""
+    value, low, high = row[column], row[f"{column}_low"], row[f"{column}_high"]
+    if missing(value):
+        return "n/a"
+    seeds = row.get("n_seeds", row.get("min_seeds"))
+    if seeds is not None and seeds < MIN_CI_SEEDS:
+        return f"{number(value, digits)} (n={seeds}: no CI)"
+    if missing(low) or missing(high):
+        return number(value, digits)
+    return f"{number(value, digits)} [{number(low, digits)}, {number(high, digits)}]"
+
+
+def _value(row: Summary, column: str) -> float | None:
+    v = row[column]
+    return None if missing(v) else float(v)
+
+
+def _number_cell(row: Summary, column: str, digits: int = 3) -> Cell:
+    return Cell(number(row[column], digits), _value(row, column))
+
+
+def _interval_cell(row: Summary, column: str, digits: int = 3) -> Cell:
+    return Cell(interval(row, column, digits), _value(row, column))
+
+
+def _count_cell(n: int) -> Cell:
+    return Cell(str(n), float(n))
+
+
+# --------------------------------------------------------------------------------------------
+# Order
+# --------------------------------------------------------------------------------------------
+
+
+def _sort_key(x: Any, descending: bool) -> float:
+    if missing(x):
+        return math.inf
+    return -x if descending else x
+
+
+def entry_order(entries: Iterable[str]) -> list[str]:
+    """sparse, dense, then the shaped entries alphabetically.
+
+    Example:
+        >>> entry_order(["plan-based/grid", "dense", "sparse"])
+        ['sparse', 'dense', 'plan-based/grid']
+    """
+    unique = set(entries)
+    return [e for e in (SPARSE, DENSE) if e in unique] + sorted(unique - {SPARSE, DENSE})
+
+
+def _ranked_by(
+    rows: Iterable[Summary], first: str, second: str, second_descending: bool
+) -> list[Summary]:
+    return sorted(
+        rows,
+        key=lambda r: (
+            _sort_key(r[first], True),
+            _sort_key(r[second], second_descending),
+            r["entry"],
+        ),
+    )
+
+
+def _ranked(summary: Iterable[Summary]) -> list[Summary]:
+    """By IQM final success (high first), then IQM final distance (low first), then name."""
+    return _ranked_by(summary, "success_iqm", "distance_iqm", False)
+
+
+def ranked_aggregate(rows: Iterable[Summary]) -> list[Summary]:
+    """By IQM normalized success, then IQM normalized distance (high first), then name."""
+    return _ranked_by(rows, "normalized_success_iqm", "normalized_distance_iqm", True)
+
+
+def by_task_and_algo(summary: Sequence[Summary]) -> dict[str, dict[str, list[Summary]]]:
+    """task -> algo -> the summary rows of its cells, ranked as on the leaderboard."""
+    out: dict[str, dict[str, list[Summary]]] = {}
+    for row in summary:
+        out.setdefault(row["task"], {}).setdefault(row["algo"], []).append(row)
+    return {
+        t: {a: _ranked(rows) for a, rows in sorted(by.items())} for t, by in sorted(out.items())
+    }
+
+
+# --------------------------------------------------------------------------------------------
+# The result tables
+# --------------------------------------------------------------------------------------------
+
+
+def _cells_table(headings: Sequence[str], rows: Iterable[Sequence[Cell]]) -> Table:
+    return Table(tuple(headings), tuple(tuple(r) for r in rows), sortable=True)
+
+
+_TASK_HEADINGS = (
+    "Entry",
+    "Seeds",
+    f"IQM success {CI_LABEL}",
+    "Mean success",
+    f"Final distance, IQM (m) {CI_LABEL}",
+    "Norm. success",
+    "Norm. distance",
+    f"P(improve over sparse) {CI_LABEL}",
+    "Curve area",
+    "Invariance",
+)
+
+
+def _task_cells(row: Summary) -> tuple[Cell, ...]:
+    return (
+        Cell(row["entry"], code=True),
+        _count_cell(row["n_seeds"]),
+        _interval_cell(row, "success_iqm"),
+        _number_cell(row, "success_mean"),
+        _interval_cell(row, "distance_iqm"),
+        _number_cell(row, "normalized_success", 2),
+        _number_cell(row, "normalized_distance", 2),
+        _interval_cell(row, "p_improve", 2),
+        _number_cell(row, "curve_area_mean"),
+        Cell(row["invariance"]),
+    )
+
+
+def task_table(ranked: Iterable[Summary]) -> Table:
+    """The cells of one task and algorithm, ranked (:func:`by_task_and_algo`)."""
+    return _cells_table(_TASK_HEADINGS, (_task_cells(r) for r in ranked))
+
+
+_AGGREGATE_HEADINGS = (
+    "Entry",
+    "Tasks",
+    "Runs",
+    f"IQM norm. success {CI_LABEL}",
+    f"IQM norm. distance {CI_LABEL}",
+    f"P(improve over sparse) {CI_LABEL}",
+    "Curve area",
+    "Not normalized on (dense no better than sparse)",
+    "Invariance",
+)
+
+
+def _short_task(task: str) -> str:
+    return task.split("/", 1)[-1]
+
+
+def _aggregate_cells(row: Summary) -> tuple[Cell, ...]:
+    excluded = row.get("normalized_success_tasks_excluded", ())
+    return (
+        Cell(row["entry"], code=True),
+        _count_cell(row["n_tasks"]),
+        _count_cell(row["n_runs"]),
+        _interval_cell(row, "normalized_success_iqm", 2),
+        _interval_cell(row, "normalized_distance_iqm", 2),
+        _interval_cell(row, "p_improve", 2),
+        _number_cell(row, "curve_area_mean"),
+        Cell(", ".join(_short_task(t) for t in excluded) or "none"),
+        Cell(row["invariance"]),
+    )
+
+
+def aggregate_table(rows: Iterable[Summary]) -> Table:
+    """The entries of one algorithm over tasks, ranked (:func:`ranked_aggregate`)."""
+    return _cells_table(_AGGREGATE_HEADINGS, (_aggregate_cells(r) for r in ranked_aggregate(rows)))
+
+
+# --------------------------------------------------------------------------------------------
+# The setup
+# --------------------------------------------------------------------------------------------
+
+#: Header keys with a place of their own; ``eval_episodes`` comes from the rows, which are
+#: authoritative. Any other key is one more line of the setup table.
+_HEADER_KEYS_SHOWN = frozenset(
+    {"profile", "command", "caveats", "description", "eval_every", "eval_episodes"}
+)
+
+
+def _seeds_text(info: Mapping[str, Any]) -> str:
+    per_entry = info["seeds_per_entry"] or [0, 0]
+    if per_entry[0] != per_entry[1]:
+        per_entry_text = f"{per_entry[0]} to {per_entry[1]} per entry"
+    else:
+        per_entry_text = f"{per_entry[0]} per entry"
+    return f"{', '.join(map(str, info['seeds'])) or 'none'} ({per_entry_text})"
+
+
+def _evaluation_items(info: Mapping[str, Any]) -> list[tuple[str, str]]:
+    evaluations = info.get("evaluations") or {}
+    texts = {text for by_task in evaluations.values() for text in by_task}
+    if len(texts) == 1:
+        return [("Evaluation (deterministic policy)", f"each point: {texts.pop()}")]
+    return [
+        (f"Evaluation of {task} (deterministic policy)", f"each point: {'; '.join(by_task)}")
+        for task, by_task in evaluations.items()
+    ]
+
+
+def _setup_items(header: Mapping[str, Any], info: Mapping[str, Any]) -> list[tuple[str, str]]:
+    """(label, text) pairs describing how the results were produced."""
+    items = [
+        ("Profile", str(header.get("profile") or ", ".join(info["profiles"]) or "n/a")),
+        ("Command", str(header.get("command", "n/a"))),
+    ]
+    if "description" in header:
+        items.append(("Description", str(header["description"])))
+    items += [
+        ("Runs", f"{info['n_runs']} finished runs, {info['n_rows']} evaluation rows"),
+        ("Seeds", _seeds_text(info)),
+        *_evaluation_items(info),
+    ]
+    if isinstance(header.get("eval_every"), int):
+        items.append(("Evaluated every", f"{header['eval_every']:,} environment steps"))
+    items += [
+        ("Discount γ", ", ".join(f"{g:g}" for g in info["gammas"]) or "n/a"),
+        ("Code version", ", ".join(info["code_versions"]) or "n/a"),
+        ("Total run time", f"{info['wall_time_s'] / 3600:.2f} h (sum over runs)"),
+    ]
+    for key in sorted(header):
+        if key not in _HEADER_KEYS_SHOWN:
+            items.append((key.replace("_", " ").capitalize(), str(header[key])))
+    return items
+
+
+def setup_table(header: Mapping[str, Any], info: Mapping[str, Any]) -> Table:
+    """How the results were produced: profile, command, runs, seeds, evaluation, versions."""
+    rows = tuple(
+        (Cell(label), Cell(text, code=label == "Command"))
+        for label, text in _setup_items(header, info)
+    )
+    return Table(("", ""), rows, keyed=True)
+
+
+def budget_table(info: Mapping[str, Any]) -> Table:
+    """Environment steps per task and algorithm."""
+    algos = sorted({a for by_algo in info["budgets"].values() for a in by_algo})
+    rows = tuple(
+        (Cell(task), *(Cell(f"{by_algo[a]:,}" if a in by_algo else "–") for a in algos))
+        for task, by_algo in info["budgets"].items()
+    )
+    return Table(("Task", *algos), rows)
+
+
+def hyperparameter_table(info: Mapping[str, Any]) -> Table:
+    """Every distinct setting of every task and algorithm, as JSON."""
+    rows = tuple(
+        (Cell(task), Cell(algo), Cell(json.dumps(s, sort_keys=True), code=True))
+        for task, by_algo in info["hyperparameters"].items()
+        for algo, settings in by_algo.items()
+        for s in settings
+    )
+    return Table(("Task", "Algorithm", "Settings"), rows)
+
+
+def packages_text(info: Mapping[str, Any]) -> str:
+    """``name version`` of every package, several versions joined by ``/``."""
+    return ", ".join(f"{name} {'/'.join(v)}" for name, v in info["packages"].items()) or "n/a"
+
+
+def caveats(header: Mapping[str, Any], info: Mapping[str, Any]) -> list[str]:
+    """The header's caveats, then those derived from the rows."""
+    given = header.get("caveats") or []
+    if isinstance(given, str):
+        given = [given]
+    return [str(c) for c in given] + list(info["caveats"])
