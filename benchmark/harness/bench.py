@@ -174,6 +174,28 @@ def _signals_interrupt() -> Iterator[list[int]]:
             signal.signal(number, handler)
 
 
+def selected_by(expression: str, key: Any) -> bool:
+    """Whether ``-k expression`` selects the suite's item of run ``key``: pytest's own keyword
+    matching on the names the item carries (its id, its module and its markers).
+
+    Example:
+        >>> from planshape.harness.profiles import RunKey
+        >>> key = RunKey("planshape/Reach-v1", "dense", "SAC-default", 0, 1000)
+        >>> selected_by("Reach and dense and default", key), selected_by("PPO", key)
+        (True, False)
+    """
+    from _pytest.mark import KeywordMatcher
+    from _pytest.mark.expression import Expression
+
+    from planshape.suite.session import BenchSession
+
+    names = {f"test_run[{BenchSession.item_id(key)}]", "test_runs.py", *BenchSession.marks(key)}
+    try:
+        return Expression.compile(expression).evaluate(KeywordMatcher(names))
+    except SyntaxError as exc:
+        raise BadInputError(f"-k {expression!r} is not a pytest -k expression: {exc}") from None
+
+
 def _dry_run(args: argparse.Namespace, profile: Any) -> int:
     """Print the runs the selection would train (not yet stored) and their estimated time."""
     from planshape.harness.estimate import estimate, render
@@ -194,7 +216,7 @@ def _dry_run(args: argparse.Namespace, profile: Any) -> int:
         )
     ]
     if args.k:
-        print(f"note: -k {args.k!r} is applied by the suite, not by --dry-run")
+        keys = [key for key in keys if selected_by(args.k, key)]
     workers = args.workers or os.cpu_count() or 1
     rows, total = estimate(keys, profile, workers)
     print(f"profile {profile.name}, results in {args.out} (nothing trains or is written)")

@@ -127,3 +127,32 @@ def test_dry_run_prints_the_selection_and_its_estimate_and_writes_nothing(tmp_pa
     assert "planshape/Reach-v1" in printed and "planshape/Push-v1" in printed
     assert "55 runs; estimated wall time" in printed  # 40 PPO reach + 15 SBX-SAC push runs
     assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    "expression", ["MazeReach and (sparse or dense) or Push and plan-distance", "not PPO", "seed3"]
+)
+def test_dry_run_selects_with_k_exactly_what_the_suite_collects(tmp_path, expression):
+    """``--dry-run -k`` applies pytest's keyword matching itself; it must pick the very items
+    the suite collects with the same ``-k`` (checked against a real collection)."""
+    import subprocess
+    import sys
+
+    from planshape.harness.bench import SUITE, selected_by
+    from planshape.suite.session import BenchSession
+
+    collected = subprocess.run(
+        [sys.executable, "-m", "pytest", str(SUITE), "--import-mode=importlib", "-p",
+         "no:cacheprovider", "-o", "addopts=", "-q", "--profile", "default", "--out",
+         str(tmp_path), "--executor", "local", "-k", expression, "--collect-only"],
+        capture_output=True, text=True, check=False,
+    ).stdout  # fmt: skip
+    ids = {line.split("[", 1)[1].rstrip("]") for line in collected.splitlines() if "[" in line}
+    keys = list(PROFILES["default"].runs())
+    chosen = {BenchSession.item_id(k) for k in keys if selected_by(expression, k)}
+    assert ids and chosen == ids
+
+
+def test_dry_run_refuses_a_k_that_is_not_an_expression(capsys):
+    assert main(["bench", "--dry-run", "-k", "(", "--out", "/nonexistent/x"]) == 2
+    assert "-k '(' is not a pytest -k expression" in capsys.readouterr().err
