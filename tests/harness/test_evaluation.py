@@ -125,7 +125,7 @@ def test_dry_run_prints_the_selection_and_its_estimate_and_writes_nothing(tmp_pa
     assert main(["bench", "--tasks", "reach,push", "--dry-run", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     assert "planshape/Reach-v1" in printed and "planshape/Push-v1" in printed
-    assert "55 runs; estimated wall time" in printed  # 40 PPO reach + 15 SBX-SAC push runs
+    assert "40 runs; estimated wall time" in printed  # 25 PPO reach + 15 SBX-SAC push runs
     assert not out.exists()
 
 
