@@ -77,6 +77,10 @@ Cells = dict[tuple[str, str, str], list[Run]]
 
 
 def _checked_by_run(rows: Iterable[Row]) -> dict[str, list[dict[str, Any]]]:
+    if hasattr(rows, "to_dict") and hasattr(rows, "columns"):  # a planshape.results.load frame
+        from planshape.results.frame import records
+
+        rows = records(rows)
     by_run: dict[str, list[dict[str, Any]]] = defaultdict(list)
     for row in rows:
         where = f"row of run {row.get('run_id', '?')!r}" if isinstance(row, Mapping) else "row"

@@ -8,6 +8,10 @@ it) and returns one row per evaluation point, with nested fields flattened into 
 boolean. Lists (``hyperparameters.policy_kwargs.net_arch``) are kept as JSON text, so the frame
 writes to CSV and Parquet unchanged. ``planshape export DIR --to FILE`` writes it.
 
+The aggregation works on the frame as on the stored rows: :func:`planshape.results.cells.
+summarize` and :func:`~planshape.results.cells.aggregate` take either, and :func:`records`
+turns a frame (all of it, or a selection of its rows) back into the rows it was made from.
+
 Example:
     >>> frame = load("leaderboard/default-v0", final_only=True)  # doctest: +SKIP
     >>> frame.groupby(["task", "algo", "entry"])["success_rate"].mean()  # doctest: +SKIP
@@ -24,7 +28,7 @@ from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
 from planshape.results import rows as schema
 
-__all__ = ["FLOAT_COLUMNS", "INT_COLUMNS", "export", "load"]
+__all__ = ["FLOAT_COLUMNS", "INT_COLUMNS", "export", "load", "records"]
 
 #: the typed columns of a row (:data:`planshape.results.rows.FIELDS` of type ``int`` and
 #: ``float``; the evaluation protocol is one, which rows carry from protocol 2 on)
@@ -60,6 +64,40 @@ def load(out_dir: str | Path, *, final_only: bool = False) -> Any:
     if len(frame):
         frame = frame.sort_values(["run_id", "step"], kind="stable").reset_index(drop=True)
     return frame
+
+
+def records(frame: Any) -> list[dict[str, Any]]:
+    """The rows a :func:`load` frame was made from: missing values as ``None``, numbers as
+    Python numbers, dotted columns nested again and JSON-text lists decoded.
+
+    Example:
+        >>> import pandas as pd
+        >>> frame = pd.DataFrame({"seed": pd.array([1], dtype="Int64"),
+        ...                       "hyperparameters.policy_kwargs.net_arch": ["[64, 64]"]})
+        >>> records(frame)
+        [{'seed': 1, 'hyperparameters': {'policy_kwargs': {'net_arch': [64, 64]}}}]
+    """
+    import pandas as pd
+
+    # a missing text is NaN in pandas' string columns: None there, NaN only in float ones
+    numeric = {c for c in frame.columns if pd.api.types.is_float_dtype(frame[c])}
+    out = []
+    for record in frame.to_dict("records"):
+        row: dict[str, Any] = {}
+        for name, value in record.items():
+            if value is pd.NA or value is None or (name not in numeric and value != value):
+                value = None
+            elif hasattr(value, "item"):  # a numpy scalar
+                value = value.item()
+            *parents, leaf = name.split(".")
+            if parents and isinstance(value, str) and value.startswith("["):
+                value = json.loads(value)
+            place = row
+            for parent in parents:
+                place = place.setdefault(parent, {})
+            place[leaf] = value
+        out.append(row)
+    return out
 
 
 def _flatten(row: dict[str, Any], prefix: str = "") -> dict[str, Any]:

@@ -52,3 +52,36 @@ def test_export_refuses_other_formats_and_damaged_stores(stored, tmp_path, capsy
     victim.write_text("")
     assert main(["export", str(stored), "--to", str(tmp_path / "out.csv")]) == 2
     assert "empty: no result rows" in capsys.readouterr().err
+
+
+def _same(a, b) -> bool:
+    """Equal lists of dicts, NaN equal to NaN."""
+    import math
+
+    def norm(v):
+        return "nan" if isinstance(v, float) and math.isnan(v) else v
+
+    return [{k: norm(v) for k, v in r.items()} for r in a] == [
+        {k: norm(v) for k, v in r.items()} for r in b
+    ]
+
+
+def test_the_aggregation_works_on_the_frame_as_on_the_rows():
+    """summarize and aggregate give the same numbers from load()'s frame as from the stored
+    rows (the committed default leaderboard), and a selection of the frame is scored alone."""
+    from pathlib import Path
+
+    from planshape.harness.profiles import PROFILES
+    from planshape.results.cells import aggregate, summarize
+    from planshape.results.frame import records
+    from planshape.results.rows import load_rows
+
+    folder = Path(__file__).resolve().parents[2] / "leaderboard"
+    rows = PROFILES["default"].shown(load_rows(folder))  # not the runs at an old budget
+    frame = load(folder)
+    frame = frame[frame["run_id"].isin({r["run_id"] for r in rows})]
+    assert records(frame.iloc[:1])[0]["hyperparameters"]["n_envs"] in (1, 8)
+    assert _same(summarize(frame, reps=200), summarize(rows, reps=200))
+    assert _same(aggregate(frame, reps=200), aggregate(rows, reps=200))
+    maze = summarize(frame[frame["task"] == "planshape/MazeReach-v1"], reps=200)
+    assert maze and {r["task"] for r in maze} == {"planshape/MazeReach-v1"}
