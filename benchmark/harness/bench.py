@@ -60,6 +60,8 @@ def pytest_arguments(args: argparse.Namespace) -> list[str]:
     workers = args.workers or os.cpu_count() or 1
     if workers > 1:
         arguments += ["-p", "xdist", "-n", str(workers)]
+    else:  # the run trains in this process: let its progress bar reach the terminal
+        arguments.append("--capture=no")
     return arguments
 
 

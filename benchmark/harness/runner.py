@@ -322,17 +322,22 @@ def evaluate(
     }
 
 
-def execute(spec: RunSpec, tensorboard: str | None = None) -> list[dict[str, Any]]:
+def execute(
+    spec: RunSpec, tensorboard: str | None = None, *, progress: bool = False
+) -> list[dict[str, Any]]:
     """Train and evaluate one run; return its tidy rows (one per evaluation point)."""
-    return train(spec, tensorboard)[1]
+    return train(spec, tensorboard, progress=progress)[1]
 
 
-def train(spec: RunSpec, tensorboard: str | None = None) -> tuple[Any, list[StoredRow]]:
+def train(
+    spec: RunSpec, tensorboard: str | None = None, *, progress: bool = False
+) -> tuple[Any, list[StoredRow]]:
     """Train and evaluate one run: the trained learner and the run's rows (:func:`execute`,
     which stores the rows; :mod:`planshape.results.videos` renders the learner's policy). With
     ``tensorboard`` (a folder), the run also logs there
-    (:mod:`planshape.training.tensorboard_logs`),
-    which changes none of its numbers."""
+    (:mod:`planshape.training.tensorboard_logs`); with ``progress``, a bar over its training
+    steps is drawn on stderr when that is a terminal (:mod:`planshape.training.progress`).
+    Neither changes any of its numbers."""
     import torch
     from stable_baselines3.common.callbacks import BaseCallback
 
@@ -351,6 +356,11 @@ def train(spec: RunSpec, tensorboard: str | None = None) -> tuple[Any, list[Stor
 
         logs.attach(model, tensorboard, key)
         callbacks.append(logs.shaping_callback(gamma))
+    if progress:
+        from planshape.training.progress import run_progress
+
+        name = f"{key.task.split('/')[-1]} {key.entry} {key.algo} seed{key.seed}"
+        callbacks.append(run_progress(name, key.budget))
 
     points: list[tuple[int, dict[str, float]]] = []
     eval_seconds = [0.0]

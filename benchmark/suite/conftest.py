@@ -18,6 +18,7 @@ import time
 
 import pytest
 
+from planshape.suite.progress import BenchProgress
 from planshape.suite.session import BenchSession, end_with_parent
 
 
@@ -68,23 +69,17 @@ def bench(request: pytest.FixtureRequest) -> BenchSession:
 
 
 class ProgressLines:
-    """After each run: how many are done, the time spent and an estimate of the time left.
-
-    The estimate scales the time spent by the estimated cost of the runs still to train over
-    that of the runs trained so far (:func:`planshape.harness.estimate.run_seconds`: a 100k-step SAC
-    run costs ten times a PPO run of the same budget), so neither runs found in the store
-    (which take no time) nor the order of cheap and dear runs distort it. Before the first run
-    finishes, it is the estimate itself."""
+    """After each run a line: how many are done, the time spent and an estimate of the time
+    left (:class:`planshape.suite.progress.TimeLeft`: weighted by each run's estimated cost, so
+    neither runs found in the store nor the order of cheap and dear runs distort it); on a
+    terminal, a progress bar for the session as a whole below the lines."""
 
     def __init__(self, config: pytest.Config):
         self.config = config
         self.started = time.monotonic()
-        self.total = 0
-        self.done = 0
-        self.skipped = 0
+        self.started_at = time.time()  # the bar's clock (tqdm's) starts with the session too
         self.cost: dict[str, float] = {}
-        self.trained_cost = 0.0
-        self.finished_cost = 0.0
+        self.progress: BenchProgress | None = None
 
     def pytest_sessionstart(self, session: pytest.Session) -> None:
         bench: BenchSession = self.config.stash[BenchSession.KEY]
@@ -101,9 +96,15 @@ class ProgressLines:
 
     def _selected(self, nodeids: list[str]) -> None:
         """Count and cost only the runs selected (``-k`` deselects some of the profile's)."""
-        self.total = len(nodeids)
+        if self.progress is not None:  # every worker of a pool reports the same collection
+            return
         names = {_run_name(nodeid) for nodeid in nodeids}
-        self.cost = {name: cost for name, cost in self.cost.items() if name in names}
+        workers = getattr(self.config.option, "numprocesses", None) or 1
+        self.progress = BenchProgress(
+            {name: self.cost.get(name, 0.0) for name in names},
+            workers=int(workers),
+            started_at=self.started_at,
+        )
 
     @pytest.hookimpl(tryfirst=True)
     def pytest_report_teststatus(self, report: pytest.TestReport, config: pytest.Config):
@@ -114,34 +115,23 @@ class ProgressLines:
 
     def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
         finished = report.when == "call" or (report.when == "setup" and not report.passed)
-        if not finished:
+        if not finished or self.progress is None:
             return
-        self.done += 1
-        elapsed = time.monotonic() - self.started
-        name = _run_name(report.nodeid)
-        cost = self.cost.get(name, 0.0)  # 0 for a run found stored
-        self.finished_cost += cost
-        if report.skipped:  # already stored: takes no time, so it says nothing about the rest
-            self.skipped += 1
-        else:
-            self.trained_cost += cost
-        remaining = max(sum(self.cost.values()) - self.finished_cost, 0.0)
-        if self.trained_cost:
-            left = elapsed / self.trained_cost * remaining
-        else:  # nothing trained yet: the estimate itself, for this many parallel runs
-            workers = getattr(self.config.option, "numprocesses", None) or 1
-            left = remaining / int(workers)
         outcome = "done" if report.passed else "stored" if report.skipped else report.outcome
+        line = self.progress.finished(
+            _run_name(report.nodeid),
+            outcome,
+            elapsed=time.monotonic() - self.started,
+            stored=report.skipped,  # already stored: takes no time, says nothing of the rest
+        )
         reporter = self.config.pluginmanager.get_plugin("terminalreporter")
         if reporter is not None:
-            reporter.write_line(
-                f"[{self.done}/{self.total}] {outcome:7s} {name}  "
-                f"elapsed {_clock(elapsed)}, about {_clock(left)} left"
-            )
+            self.progress.write(reporter.write_line, line)
 
     def pytest_terminal_summary(self, terminalreporter) -> None:
-        if not self.total:  # the selection matched no run: nothing is rendered
-            return
+        if self.progress is None or not self.progress.total:
+            return  # the selection matched no run: nothing is rendered
+        self.progress.close()
         text = self.config.stash[BenchSession.KEY].finish()
         if text:
             terminalreporter.write_sep("=", "planshape leaderboard")
@@ -151,9 +141,3 @@ class ProgressLines:
 def _run_name(nodeid: str) -> str:
     """The run's item id (``Reach-v1|sparse|PPO|seed0``) of a test node id."""
     return nodeid.split("[", 1)[-1].rstrip("]")
-
-
-def _clock(seconds: float) -> str:
-    minutes, secs = divmod(int(seconds), 60)
-    hours, minutes = divmod(minutes, 60)
-    return f"{hours}h{minutes:02d}m" if hours else f"{minutes}m{secs:02d}s"

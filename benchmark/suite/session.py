@@ -82,6 +82,8 @@ class BenchSession:
     render: bool = True
     #: a folder to log every trained run to (planshape.training.tensorboard_logs), or None
     tensorboard: str | None = None
+    #: draw a bar over each run's training steps (a single-worker session on a terminal)
+    progress: bool = False
     collected: int = 0
     store: ResultStore = field(init=False)
     _checked: dict[str, str] = field(init=False, default_factory=dict)
@@ -104,6 +106,8 @@ class BenchSession:
             address=option("--address"),
             render=not option("--no-render"),
             tensorboard=option("--tensorboard"),
+            # in a process pool the workers' output is not shown: only the session's bar
+            progress=not hasattr(config, "workerinput") and option("--executor") == "local",
         )
 
     # ---- selection ---------------------------------------------------------------------------
@@ -196,7 +200,7 @@ class BenchSession:
         spec = self.spec(key)
         run_id = spec.run_id  # before running: the identity of what was asked for
         if self.executor == "local":
-            rows = execute(spec, self.tensorboard)
+            rows = execute(spec, self.tensorboard, progress=self.progress)
         else:
             rows = _execute_on_ray(spec, self.address, self.tensorboard)
         self.store.write(run_id, rows)
