@@ -468,15 +468,35 @@ class HStarGeodesic(_BoundPotential):
         return self._along(model, entry, ctx.geometry, ctx.obs)
 
     def specialize(self, ctx: ShapingContext) -> StepPotential | None:
-        """The abstract state's (h*, optimal moves) remembered per key of the classifiers; the
-        continuous part measured on every step."""
+        """The abstract state's (h*, optimal moves) remembered per key of the classifiers, with
+        φ itself where it is constant in the cell; the continuous part measured on every step
+        by :meth:`_along`'s arithmetic in the same order (so the same floats), without its
+        per-step tests and conversions."""
         model, geometry = self._model(ctx), ctx.geometry
-        return _per_key(
-            self,
-            ctx,
-            lambda here: self._entry(here)[1],
-            lambda entry, obs: self._along(model, entry, geometry, obs),
-        )
+
+        def remember(here: ShapingContext) -> Any:
+            h, moves = self._entry(here)[1]
+            if h == 0 or math.isinf(h) or not moves:  # φ does not depend on where in the cell
+                return self._along(model, (h, moves), geometry, here.obs)
+            return h, model.normalizer, tuple(moves)
+
+        def measure(remembered: Any, obs: Any) -> float:
+            if type(remembered) is float:
+                return remembered
+            h, normalizer, moves = remembered
+            positions = geometry.positions(obs)
+            left = math.inf
+            for entity, a, b, length in moves:
+                p = positions[entity]
+                via_a = h + math.dist(p, a) / length
+                via_b = h - 1 + math.dist(p, b) / length
+                if via_a < left:
+                    left = via_a
+                if via_b < left:
+                    left = via_b
+            return -left * normalizer
+
+        return _per_key(self, ctx, remember, measure)
 
 
 def _per_key(
