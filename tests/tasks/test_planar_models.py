@@ -145,3 +145,41 @@ def test_remembered_cell_answers_agree_with_the_batch_path(task: str) -> None:
             assert evaluator.holding(obs) == set(np.flatnonzero(evaluator(obs)).tolist())
             floor = int(rng.integers(0, progress.final + 1))
             assert progress.advance(floor, obs) == max(floor, int(furthest))
+
+
+@pytest.mark.parametrize(
+    "task", ["planshape/Reach-v1", "planshape/Push-v1", "planshape/MazeReach-v1"]
+)
+@pytest.mark.parametrize("model", ["single", "multi"])
+def test_hashed_region_answers_agree_with_the_batch_path(task: str, model: str) -> None:
+    """The waypoint models' one-observation path hashes every table's discs into one set of
+    buckets (InPlace._hashed_for). Around every region's rim (where a bucket or a test could
+    be off by one), at its centre and anywhere in the workspace, it answers what the batch
+    path answers, for every evaluator of the model (progress and full abstract states)."""
+    env = gymnasium.make(task, reward="shaped", model=model, gamma=0.99)
+    progress = env.get_wrapper_attr("progress")
+    abstraction = progress.abstraction
+    evaluators = [progress._evaluate, abstraction.evaluator(list(abstraction.fluent_atoms))]
+    space = env.observation_space
+    rng = np.random.default_rng(1)
+    observations = list(rng.uniform(space.low - 0.05, space.high + 0.05, (500, *space.shape)))
+    rim_inside = 0  # observations whose entities are strictly inside a region
+    in_place = next(iter(abstraction.classifiers.values())).fn
+    tables = in_place.places
+    for table in tables:
+        regions = [*table.centres.values(), *(p for ps in table.alternatives.values() for p in ps)]
+        for cx, cy in regions:
+            for angle in rng.uniform(0, 2 * np.pi, 12):
+                for radius in (0.0, 0.97 * table.size, table.size, 1.03 * table.size):
+                    obs = rng.uniform(space.low, space.high).astype(np.float64)
+                    for slot in (slice(0, 2), slice(2, 4))[: len(obs) // 2]:
+                        obs[slot] = (cx + radius * np.cos(angle), cy + radius * np.sin(angle))
+                    observations.append(obs)
+                    rim_inside += radius < 0.99 * table.size
+    inside = 0
+    for obs in np.asarray(observations, np.float32):
+        for evaluator in evaluators:
+            held = evaluator.holding(obs)
+            assert held == set(np.flatnonzero(evaluator(obs)).tolist()), obs
+        inside += bool(held)
+    assert inside >= rim_inside  # the regions were entered, not only missed
