@@ -362,48 +362,12 @@ _PPO_STEPS = {"Reach": 240 * 1024, "Push": 320 * 1024, "MazeReach": 120 * 1024}
 #:   at 100,000 with 20k of margin.
 #: * MazeReach 30,000, a transient: plan-distance/grid's deterministic policy succeeds at 30k on
 #:   seeds 0, 1, 3, 4 (4/5; training success 0.58, 0.96, 0.67, 0.62) but only seed 0 keeps it:
-#:   seeds 1, 3, 4 lose it by 40k and their training success falls to 0.00-0.17 from 50k to
-#:   100k, so from 40k to 100k plan-distance is 1/5 at every point. h-star-geodesic/grid: one
-#:   success in 50 points (seed 0 at 90k), training success 0 on 4/5 seeds; plan-path/grid
-#:   seeds 0-2: never (training success 0). No planning-derived potential holds maze-reach with
-#:   SAC on these curves; 30,000 is the one budget at which one solves it (the rule), and the
-#:   planar profile says so in a caveat.
-_SAC_STEPS = {"Reach": 10_000, "Push": 15_000, "MazeReach": 15_000}
-
-#: PPO on the v1 tasks, from learning curves of ``planshape probe`` (evaluation of the
-#: deterministic policy every 40,960 steps, seeds 0-2; the rule: dense reaches success on reach
-#: and push, a planning-derived potential on maze-reach, where dense is trapped by the wall):
-#:
-#: * Reach 245,760: dense succeeds at 245,760 on 3/3 seeds (training-episode success 0.93,
-#:   0.86, 0.87), the first point where all three do; at 204,800 none did.
-#: * MazeReach 122,880: plan-distance/grid succeeds from 81,920 on 3/3 seeds and at every
-#:   point after (training success 0.52-0.64 at 122,880); h-star-geodesic/grid 3/3 at 204,800.
-#: * Push 327,680: NOT informative. Dense succeeds on 1/3 seeds (seed 0 from 204,800; seed 1
-#:   pushes to 0.055 m, training success 0.69, but its deterministic policy fails; seed 2 never
-#:   moves the cylinder); the planar profile's 5 seeds at 327,680: 3/5. Only the ``planar``
-#:   profile carries it, with that caveat.
-_PPO_STEPS = {"Reach": 240 * 1024, "Push": 320 * 1024, "MazeReach": 120 * 1024}
-#: SBX-SAC on the v1 tasks (train_freq 4 × 4 gradient steps), from the same kind of curves
-#: every 10,000 steps (``planshape probe TASK ENTRY --algo SBX-SAC --chunks …``), seeds 0-4:
-#:
-#: * Push 150,000: dense's deterministic policy succeeds on seeds 0-3 at every point from
-#:   120,000 to 250,000 (first success at 100k, 110k, 50k, 30k; training success 0.94-1.00 at
-#:   120k, 1.00 from 150k); seed 4 never succeeds up to 250,000 (training success 0.00 at every
-#:   point). So dense is 4/5 = 0.8 from 120,000 on and the rule holds at 150,000 with 30k of
-#:   margin; at 100,000 (the previous budget) it was 3/5, as the stored runs show.
-#: * Reach 100,000: dense's deterministic policy succeeds from 30k, 40k, 60k and 80k on seeds
-#:   4, 3, 0 and 1 and at every point after (but one: seed 4 at 120k); seed 2 never does up to
-#:   150,000 (training success 0.02 there). Dense is 4/5 = 0.8 from 80,000 on: the rule holds
-#:   at 100,000 with 20k of margin.
-#: * MazeReach 30,000, a transient: plan-distance/grid's deterministic policy succeeds at 30k on
-#:   seeds 0, 1, 3, 4 (4/5; training success 0.58, 0.96, 0.67, 0.62) but only seed 0 keeps it:
 #:   seeds 1, 3, 4 lose it by 40k and training success falls to 0.00-0.17 from 50k to 100k
 #:   (the ball learns to stop short), so from 40k to 100k plan-distance is 1/5 at every point.
 #:   h-star-geodesic/grid: 1 success in 50 points (seed 0 at 90k), training success 0 on 4/5
 #:   seeds; plan-path/grid seeds 0-2: never (training success 0). No planning-derived potential
-#:   holds maze-reach with
-#:   SAC on this curve; 30,000 is the one budget where one solves it (the rule), and the cells
-#:   say so in a caveat.
+#:   holds maze-reach with SAC on this curve; 30,000 is the one budget where one solves it (the
+#:   rule), and the cells say so in a caveat.
 _SAC_STEPS = {"Reach": 100_000, "Push": 150_000, "MazeReach": 30_000}
 
 
