@@ -652,6 +652,15 @@ METAWORLD_V0_PROFILE = _metaworld(
 #: and push; time-varying/grid 0.2 + 1.0 + 0.4; plan-distance/grid 1.0 + 0.0 + 0.0, tied with
 #: distance-varying/grid; plan-path/grid solved none)
 INSTANCE_POTENTIALS = ("plan-based", "time-varying", "plan-distance")
+#: PPO on the distributions, from learning curves of ``planshape probe
+#: planshape/ReachRandomized-v1 ENTRY --budget 409600 --chunks 10`` (each point: the 50 held-out
+#: instances): dense's held-out success is 0.00-0.06 at every point up to 409,600 on seeds 0-2
+#: (0.06, 0.04, 0.00 at the end; training-episode success 0.12, 0.04, 0.03; final distance
+#: 0.155-0.160 m from 0.22-0.26 m untrained), and plan-based/grid's 0.00 at every point (seeds
+#: 0-1). So no PPO budget this machine can afford satisfies the rule (dense ≥ 0.8) on the reach
+#: distribution: more than 1.7 times the fixed task's budget does not bring dense to 0.1. The
+#: profile keeps the fixed tasks' budgets, and says so in a caveat; the SBX-SAC curves on the
+#: distributions are still to be measured.
 
 INSTANCES = Profile(
     name="instances",
@@ -676,8 +685,10 @@ INSTANCES = Profile(
     caveats=(
         "every evaluation point runs the 50 held-out instances: success is the fraction of "
         "unseen instances solved",
-        "budgets are those of the fixed tasks, not yet chosen from learning curves on the "
-        "distributions",
+        "budgets are those of the fixed tasks, not chosen from learning curves on the "
+        "distributions: on the reach distribution PPO's dense reward solved at most 0.06 of the "
+        "held-out instances up to 409,600 steps (3 seeds), so at these budgets a PPO cell "
+        "compares entries that all fail; the SBX-SAC curves are still to be measured",
         *_SHARED_CAVEATS,
     ),
 )
