@@ -207,6 +207,21 @@ class PlanPath(Potential):
         order, path, d0 = self._prepared(ctx)
         positions = ctx.require_geometry(self.name).positions
         rest, last_entity = path.rest, order[-1]
+        if len(order) == 1:  # the planar reaches: no link (sum() of none is 0, and 0 + r is r)
+
+            def phi_one(obs: Any, progress: int) -> float:
+                return -rest(positions(obs)[last_entity]) / d0
+
+            return phi_one
+        if len(order) == 2:  # the planar push: one link, summed as sum() sums one term
+            first = order[0]
+
+            def phi_two(obs: Any, progress: int) -> float:
+                where = positions(obs)
+                last = where[last_entity]
+                return -(math.dist(where[first], last) + rest(last)) / d0
+
+            return phi_two
 
         def phi(obs: Any, progress: int) -> float:
             where = positions(obs)
