@@ -13,6 +13,11 @@ Example:
     >>> store.path("abc").name
     'abc.jsonl'
 
+Two benchmarks may write into one folder at once (different ``-k`` selections, say): while a
+run trains, its benchmark holds a claim on it (:meth:`ResultStore.claim`, a lock the operating
+system releases when the process ends, however it ends), and another benchmark that reaches
+the same run skips it instead of training it a second time.
+
 A file counts as a finished run only if :func:`planshape.results.rows.read_run` reads it as a
 whole run; reading every run back, with those checks, is
 :func:`planshape.results.rows.load_rows`. A temporary file carries the id of the process writing
@@ -22,10 +27,11 @@ benchmark's.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import tempfile
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -74,6 +80,46 @@ class ResultStore:
         """Write a finished run's rows atomically (a run written again is replaced whole)."""
         text = "".join(json.dumps(row, sort_keys=True) + "\n" for row in rows)
         return write_atomic(self.path(run_id), text)
+
+    @contextlib.contextmanager
+    def claim(self, run_id: str) -> Iterator[bool]:
+        """While the block runs, hold the claim on training ``run_id``: yields True when this
+        process holds it, False when another live process does. The claim is an exclusive
+        ``flock`` on ``<out>/.claims/<run_id>.lock``, removed when released; the kernel drops a
+        killed holder's lock with the process. A claimer should check :meth:`has` again once it
+        holds the claim (the holder before it may have finished the run). Where ``fcntl`` is
+        missing (Windows) every claim is granted.
+
+        Example:
+            >>> import tempfile
+            >>> store = ResultStore(tempfile.mkdtemp())
+            >>> with store.claim("abc") as mine, store.claim("abc") as again:
+            ...     mine, again
+            (True, False)
+        """
+        try:
+            import fcntl
+        except ImportError:  # pragma: no cover - not on POSIX
+            yield True
+            return
+        folder = self.out / ".claims"
+        folder.mkdir(parents=True, exist_ok=True)
+        path = folder / f"{run_id}.lock"
+        descriptor = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            try:
+                fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                yield False
+                return
+            try:
+                os.write(descriptor, f"{os.getpid()}\n".encode())
+                yield True
+            finally:
+                path.unlink(missing_ok=True)
+                fcntl.flock(descriptor, fcntl.LOCK_UN)
+        finally:
+            os.close(descriptor)
 
     def clean_partial(self) -> int:
         """Remove the temporary files of writers that were killed while writing (their process

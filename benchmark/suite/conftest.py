@@ -19,7 +19,7 @@ import time
 import pytest
 
 from planshape.suite.progress import BenchProgress
-from planshape.suite.session import BenchSession, end_with_parent
+from planshape.suite.session import BUSY, BenchSession, end_with_parent
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -118,6 +118,8 @@ class ProgressLines:
         if not finished or self.progress is None:
             return
         outcome = "done" if report.passed else "stored" if report.skipped else report.outcome
+        if report.skipped and BUSY in str(report.longrepr):
+            outcome = "busy"  # another benchmark on this folder is training it
         line = self.progress.finished(
             _run_name(report.nodeid),
             outcome,

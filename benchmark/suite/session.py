@@ -6,6 +6,7 @@ the same run function serve ``pytest benchmark/suite``, ``planshape bench`` and 
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
@@ -24,6 +25,8 @@ from planshape.harness.runner import RunSpec, execute
 from planshape.harness.store import ResultStore, write_atomic
 from planshape.shaping.registration import task_ids
 
+#: the skip reason of a run that another benchmark on the same folder is training
+BUSY = "being trained by another planshape bench on this folder"
 SHAPED_ENTRY = re.compile(r"^(?P<potential>.+)/(?P<model>[^/]+)$")
 
 
@@ -192,6 +195,10 @@ class BenchSession:
             self.profile.eval_episodes,
             invariance=self.verdict(key.potential) if with_verdict else "not-checked",
         )
+
+    def claim(self, key: RunKey) -> contextlib.AbstractContextManager[bool]:
+        """The store's claim on training ``key``'s run (:meth:`ResultStore.claim`)."""
+        return self.store.claim(self.spec(key, with_verdict=False).run_id)
 
     def is_done(self, key: RunKey) -> bool:
         return self.store.has(self.spec(key, with_verdict=False).run_id)

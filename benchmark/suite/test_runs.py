@@ -5,10 +5,15 @@ from __future__ import annotations
 import pytest
 
 from planshape.harness.profiles import RunKey
-from planshape.suite.session import BenchSession
+from planshape.suite.session import BUSY, BenchSession
 
 
 def test_run(run_key: RunKey, bench: BenchSession) -> None:
     if bench.is_done(run_key):
         pytest.skip("already in the results store")
-    bench.run(run_key)
+    with bench.claim(run_key) as mine:
+        if not mine:
+            pytest.skip(BUSY)
+        if bench.is_done(run_key):  # the benchmark that held the claim finished it
+            pytest.skip("already in the results store")
+        bench.run(run_key)

@@ -185,3 +185,28 @@ def test_a_k_selection_counts_and_estimates_only_its_own_runs(tmp_path, capfd):
     lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
     assert len(lines) == 1 and lines[0].startswith("[1/1] done")
     assert lines[0].endswith("about 0m00s left")
+
+
+def test_a_run_another_benchmark_is_training_is_left_to_it(tmp_path, capfd):
+    """Two benchmarks on one folder: a run the other one holds the claim on is skipped
+    ("busy"), not trained twice, and trained once the claim is released."""
+    from planshape.harness.profiles import PROFILES
+    from planshape.suite.session import BenchSession
+
+    out = tmp_path / "shared"
+    session = BenchSession(profile=PROFILES["smoke"], out=out)
+    runs = session.keys()
+    (key,) = [k for k in runs if k.entry == "sparse"]
+    run_id = session.spec(key, with_verdict=False).run_id
+    store = ResultStore(out)
+    command = ["bench", "--profile", "smoke", "--out", str(out), "--workers", "1", "-k", "sparse"]
+    with store.claim(run_id) as mine:  # the other benchmark, training this run
+        assert mine
+        assert main([*command, "--no-render"]) == 0
+        lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
+        assert len(lines) == 1 and lines[0].startswith("[1/1] busy"), lines
+        assert not store.has(run_id)
+    assert main(command) == 0  # released (that benchmark ended without storing it): trained
+    lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
+    assert lines[0].startswith("[1/1] done") and store.has(run_id)
+    assert list((out / ".claims").iterdir()) == []  # no claim is left behind

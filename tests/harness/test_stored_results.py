@@ -251,3 +251,30 @@ def test_a_larger_profile_starts_from_the_same_runs_of_a_smaller_one(tmp_path):
     )
     with pytest.raises(BadInputError, match="holds runs of profile 'default'"):
         check_store(tmp_path, PROFILES["smoke"])
+
+
+def test_a_killed_benchmarks_claim_ends_with_it(tmp_path):
+    """The claim on a run is the operating system's lock: a holder killed with SIGKILL (no
+    cleanup runs) releases it, and a claim held by a live process is refused."""
+    store = ResultStore(tmp_path)
+    holder = subprocess.Popen(
+        [
+            sys.executable,
+            "-c",
+            "import sys, time; from planshape.harness.store import ResultStore\n"
+            f"with ResultStore({str(tmp_path)!r}).claim('abc') as mine:\n"
+            "    print(mine, flush=True); time.sleep(60)",
+        ],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        assert holder.stdout.readline().strip() == "True"
+        with store.claim("abc") as mine:
+            assert not mine  # a live process holds it
+    finally:
+        holder.send_signal(signal.SIGKILL)
+        holder.wait()
+    time.sleep(0.1)
+    with store.claim("abc") as mine:
+        assert mine
