@@ -98,7 +98,10 @@ def main(argv: list[str] | None = None) -> int:
     for r in rows:
         overhead = r["shaped_us"] - r["plain_us"]
         verdict = "met" if r["ratio"] <= GOAL else "not met"
-        print(f"{r['task']}: +{overhead:.1f} µs per step, ratio {r['ratio']:.2f} ({verdict})")
+        print(
+            f"{r['task']} {r['potential']}/{r['model']}: +{overhead:.1f} µs per step, "
+            f"ratio {r['ratio']:.2f} ({verdict})"
+        )
     return 0
 
 
