@@ -1,10 +1,10 @@
 """Which regions of the plane contain a point, for the region classifiers.
 
-* :class:`RegionIndex`: regions of one size (waypoint discs or squares) that may overlap or
+* :class:`RegionIndex`: discs or squares (of one size or several) that may overlap or
   leave gaps. Region classifiers answer a batch of observations with numpy; for the one
   observation of a shaping step a few small numpy operations cost more than the test itself, so
-  the index hashes the regions into square buckets as wide as a region and tests a point only
-  against the (at most four) regions that overlap its bucket.
+  the index hashes the regions into square buckets as wide as the largest region and tests a
+  point only against the few regions that overlap its bucket.
 * :class:`Lattice`: the cells of a square grid that tiles the plane. A point is in exactly one
   cell, found by rounding, on the batch path and the one-point path alike. Squares tested one by
   one would leave points on a shared edge in no cell or, where rounding puts two centres a hair
@@ -28,28 +28,47 @@ import numpy as np
 
 
 class RegionIndex:
-    """Point-in-region lookup for regions of one size: squares of half side ``size`` or discs
-    of radius ``size`` centred at ``centres``.
+    """Point-in-region lookup for squares of half side ``size`` or discs of radius ``size``
+    centred at ``centres``; ``size`` and ``square`` are one value for every region or one per
+    region (the waypoint discs and the smaller discs behind the box in one index).
 
     Args:
         centres: the regions' centres, ``(x, y)`` each; results are positions in this list,
             in increasing order.
-        size: half side (squares) or radius (discs), > 0.
-        square: squares (the max-norm) rather than discs. Boundaries are outside (``<``).
+        size: half side (squares) or radius (discs), > 0: a number, or one per region.
+        square: squares (the max-norm) rather than discs, for all regions or per region.
+            Boundaries are outside (``<``).
+
+    Example:
+        >>> mixed = RegionIndex([(0.0, 0.0), (0.1, 0.0)], size=[0.06, 0.05], square=[False, True])
+        >>> mixed.containing(0.05, 0.0), mixed.containing(0.055, 0.0)  # a boundary is outside
+        ([0], [0, 1])
     """
 
-    def __init__(self, centres: Sequence[Sequence[float]], size: float, square: bool = False):
-        if not size > 0:
-            raise ValueError(f"region size must be positive, not {size}")
-        self.size = float(size)
-        self.square = square
-        self._width = 2.0 * self.size
-        self._buckets: dict[tuple[int, int], list[tuple[int, float, float]]] = {}
-        for index, (cx, cy) in enumerate(centres):
-            cx, cy = float(cx), float(cy)
-            for bx in range(self._bucket(cx - self.size), self._bucket(cx + self.size) + 1):
-                for by in range(self._bucket(cy - self.size), self._bucket(cy + self.size) + 1):
-                    self._buckets.setdefault((bx, by), []).append((index, cx, cy))
+    def __init__(
+        self,
+        centres: Sequence[Sequence[float]],
+        size: float | Sequence[float],
+        square: bool | Sequence[bool] = False,
+    ):
+        centres = [(float(cx), float(cy)) for cx, cy in centres]
+        per_region = isinstance(size, Sequence)
+        sizes = [float(v) for v in size] if per_region else [float(size)] * len(centres)
+        squares = list(square) if isinstance(square, Sequence) else [square] * len(centres)
+        if len(sizes) != len(centres) or len(squares) != len(centres):
+            raise ValueError("give one size and one shape per region, or one for all")
+        for value in sizes if per_region else [float(size)]:
+            if not value > 0:
+                raise ValueError(f"region size must be positive, not {value}")
+        self._width = 2.0 * max(sizes, default=1.0)
+        # per bucket, the regions overlapping it: (position, centre, half side or squared
+        # radius, square)
+        self._buckets: dict[tuple[int, int], list[tuple[int, float, float, float, bool]]] = {}
+        for index, ((cx, cy), r, sq) in enumerate(zip(centres, sizes, squares, strict=True)):
+            limit = r if sq else r * r
+            for bx in range(self._bucket(cx - r), self._bucket(cx + r) + 1):
+                for by in range(self._bucket(cy - r), self._bucket(cy + r) + 1):
+                    self._buckets.setdefault((bx, by), []).append((index, cx, cy, limit, sq))
 
     def _bucket(self, value: float) -> int:
         return math.floor(value / self._width)
@@ -59,13 +78,12 @@ class RegionIndex:
         candidates = self._buckets.get((self._bucket(x), self._bucket(y)))
         if not candidates:
             return []
-        size = self.size
         found = []
-        for index, cx, cy in candidates:
-            if self.square:
-                inside = max(abs(x - cx), abs(y - cy)) < size
+        for index, cx, cy, limit, square in candidates:
+            if square:
+                inside = max(abs(x - cx), abs(y - cy)) < limit
             else:
-                inside = (x - cx) ** 2 + (y - cy) ** 2 < size * size
+                inside = (x - cx) ** 2 + (y - cy) ** 2 < limit
             if inside:
                 found.append(index)
         return found

@@ -153,17 +153,16 @@ class Places:
 
 
 #: a route: the groundings list it was built for, (table, columns, places) per place table,
-#: whether one table answers every grounding in order, and per table the grounding positions
-#: of each of its places (for the one-observation path)
+#: whether one table answers every grounding in order, per table the grounding positions of
+#: each of its places, and (for the one-observation path, when no table is a grid) one
+#: RegionIndex over every region the groundings name with each region's grounding positions
+#: and whether a place has several regions (positions may then repeat)
 Route = tuple[
-    object, list[tuple["Places", np.ndarray, np.ndarray]], bool, list[dict[int, list[int]]]
-]
-
-#: the one-observation index of a route's disc and square regions: bucket width, bucket →
-#: (grounding positions, centre x, centre y, half side or squared radius, square) of the regions
-#: overlapping it, and whether a place has several regions (positions may repeat)
-Hashed = tuple[
-    float, dict[tuple[int, int], list[tuple[tuple[int, ...], float, float, float, bool]]], bool
+    object,
+    list[tuple["Places", np.ndarray, np.ndarray]],
+    bool,
+    list[dict[int, list[int]]],
+    "tuple[RegionIndex, list[tuple[int, ...]], bool] | None",
 ]
 
 
@@ -178,7 +177,6 @@ class InPlace:
         # routes per list of groundings: each evaluator (progress tracking, full abstract
         # states) passes its own fixed list, so one route is built per list, once
         self._routes: dict[int, Route] = {}
-        self._hashed: dict[int, tuple[object, Hashed | None]] = {}
 
     def _route(self, groundings: Sequence[tuple[str, ...]]) -> Route:
         """Which place table answers which grounding, and whether one table answers all."""
@@ -196,7 +194,30 @@ class InPlace:
                 if name in table.centres:
                     where.setdefault(int(table.index([name])[0]), []).append(column)
             positions.append(where)
-        return groundings, plan, whole, positions
+        return groundings, plan, whole, positions, self._merged(positions)
+
+    def _merged(
+        self, positions: list[dict[int, list[int]]]
+    ) -> tuple[RegionIndex, list[tuple[int, ...]], bool] | None:
+        """Every region of every table that a grounding names (centres and alternatives), in
+        one :class:`planshape.tasks.regions.RegionIndex`, with the grounding positions of
+        each: one bucket lookup per observation instead of one per table. None when a table is
+        a grid (a grid cell is found by rounding, :class:`planshape.tasks.regions.Lattice`)."""
+        if any(table.grid for table in self.places):
+            return None
+        centres, sizes, squares, owners = [], [], [], []
+        for table, where in zip(self.places, positions, strict=True):
+            names: dict[str, int] = table._names  # type: ignore[attr-defined]
+            regions = [(names[n], p) for n, p in table.centres.items()]
+            regions += [(names[n], p) for n, ps in table.alternatives.items() for p in ps]
+            for place, centre in regions:
+                if where.get(place):  # a place no grounding names holds nothing here
+                    centres.append(centre)
+                    sizes.append(table.size)
+                    squares.append(table.square)
+                    owners.append(tuple(where[place]))
+        repeats = any(table.alternatives for table in self.places)
+        return RegionIndex(centres, sizes, squares), owners, repeats
 
     def _route_for(self, groundings: Sequence[tuple[str, ...]]) -> Route:
         route = self._routes.get(id(groundings))
@@ -218,71 +239,19 @@ class InPlace:
         """The positions in ``groundings`` that hold in one observation (see
         :class:`planshape.shaping.abstraction.Vectorized`)."""
         x, y = obs[self.position].tolist()
-        hashed = self._hashed_for(groundings)
-        if hashed is not None:  # discs and squares only: one lookup for every table
-            width, buckets, repeats = hashed
-            candidates = buckets.get((math.floor(x / width), math.floor(y / width)))
-            if not candidates:
-                return []
-            found = []
-            for columns, cx, cy, limit, square in candidates:
-                if square:
-                    inside = max(abs(x - cx), abs(y - cy)) < limit
-                else:
-                    inside = (x - cx) ** 2 + (y - cy) ** 2 < limit
-                if inside:
-                    found.extend(columns)
+        route = self._route_for(groundings)
+        if route[4] is not None:  # discs and squares only: one lookup for every table
+            index, owners, repeats = route[4]
+            found = [column for region in index.containing(x, y) for column in owners[region]]
             return list(dict.fromkeys(found)) if repeats else found
         found = []
-        for table, where in zip(self.places, self._route_for(groundings)[3], strict=True):
+        for table, where in zip(self.places, route[3], strict=True):
             for place in table.containing(x, y):
                 found.extend(where.get(place, ()))
         return found
 
-    def _hashed_for(self, groundings: Sequence[tuple[str, ...]]) -> Hashed | None:
-        """The regions of every table that ``groundings`` name, hashed into one set of square
-        buckets as wide as the largest region (each region listed in every bucket it
-        overlaps), so that a point is tested only against the few regions of its bucket with
-        the tests of :class:`planshape.tasks.regions.RegionIndex`; None when a table is a grid
-        (a grid cell is found by rounding, :class:`planshape.tasks.regions.Lattice`)."""
-        hit = self._hashed.get(id(groundings))
-        if hit is not None and hit[0] is groundings:
-            return hit[1]
-        hashed: Hashed | None = None
-        if not any(table.grid for table in self.places):
-            where_by_table = self._route_for(groundings)[3]
-            width = 2.0 * max(table.size for table in self.places)
-            buckets: dict[tuple[int, int], list[tuple[tuple[int, ...], float, float, float, bool]]]
-            buckets = {}
-            repeats = False
-            for table, where in zip(self.places, where_by_table, strict=True):
-                limit = table.size if table.square else table.size * table.size
-                names = list(table.centres)
-                discs = [(i, table.centres[n]) for i, n in enumerate(names)]
-                discs += [(table._names[n], p) for n, ps in table.alternatives.items() for p in ps]  # type: ignore[attr-defined]
-                repeats = repeats or bool(table.alternatives)
-                for place, (cx, cy) in discs:
-                    columns = tuple(where.get(place, ()))
-                    if not columns:  # no grounding names this place
-                        continue
-                    cx, cy = float(cx), float(cy)
-                    for bx in range(
-                        math.floor((cx - table.size) / width),
-                        math.floor((cx + table.size) / width) + 1,
-                    ):
-                        for by in range(
-                            math.floor((cy - table.size) / width),
-                            math.floor((cy + table.size) / width) + 1,
-                        ):
-                            buckets.setdefault((bx, by), []).append(
-                                (columns, cx, cy, limit, table.square)
-                            )
-            hashed = (width, buckets, repeats)
-        self._hashed[id(groundings)] = (groundings, hashed)
-        return hashed
-
     def __call__(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> np.ndarray:
-        _, plan, whole, _ = self._route_for(groundings)
+        _, plan, whole, _, _ = self._route_for(groundings)
         points = obs[..., self.position]
         if whole:  # one table answers every grounding, in order
             table, _, index = plan[0]
