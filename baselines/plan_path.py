@@ -62,8 +62,10 @@ def chain_distance(positions: Mapping[str, Any], goal: Any) -> float:
         >>> chain_distance({"ee": (0, 0), "box": (3, 4)}, (3, 5))
         6.0
     """
-    points = [*positions.values(), goal]
-    return sum(point_distance(a, b) for a, b in itertools.pairwise(points))
+    total = 0.0  # link by link, as the step functions sum (sum() of floats may not)
+    for a, b in itertools.pairwise([*positions.values(), goal]):
+        total += point_distance(a, b)
+    return total
 
 
 def chained_entities(geometry: Any, obs: Any, who: str) -> list[str]:
@@ -207,26 +209,13 @@ class PlanPath(Potential):
         order, path, d0 = self._prepared(ctx)
         positions = ctx.require_geometry(self.name).positions
         rest, last_entity = path.rest, order[-1]
-        if len(order) == 1:  # the planar reaches: no link (sum() of none is 0, and 0 + r is r)
-
-            def phi_one(obs: Any, progress: int) -> float:
-                return -rest(positions(obs)[last_entity]) / d0
-
-            return phi_one
-        if len(order) == 2:  # the planar push: one link, summed as sum() sums one term
-            first = order[0]
-
-            def phi_two(obs: Any, progress: int) -> float:
-                where = positions(obs)
-                last = where[last_entity]
-                return -(math.dist(where[first], last) + rest(last)) / d0
-
-            return phi_two
+        links = list(itertools.pairwise(order))
 
         def phi(obs: Any, progress: int) -> float:
             where = positions(obs)
-            points = [where[e] for e in order]
-            lead = sum(point_distance(a, b) for a, b in itertools.pairwise(points))
+            lead = 0.0  # summed as chain_distance sums, link by link
+            for a, b in links:
+                lead += math.dist(where[a], where[b])
             return -(lead + rest(where[last_entity])) / d0
 
         return phi
