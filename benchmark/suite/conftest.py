@@ -118,7 +118,7 @@ class ProgressLines:
         if not finished or self.progress is None:
             return
         outcome = "done" if report.passed else "stored" if report.skipped else report.outcome
-        if report.skipped and BUSY in str(report.longrepr):
+        if report.skipped and any(tuple(p) == BUSY for p in report.user_properties):
             outcome = "busy"  # another benchmark on this folder is training it
         line = self.progress.finished(
             _run_name(report.nodeid),

@@ -25,8 +25,8 @@ from planshape.harness.runner import RunSpec, execute
 from planshape.harness.store import ResultStore, write_atomic
 from planshape.shaping.registration import task_ids
 
-#: the skip reason of a run that another benchmark on the same folder is training
-BUSY = "being trained by another planshape bench on this folder"
+#: the user property of an item whose run another benchmark on the same folder is training
+BUSY = ("planshape", "busy")
 SHAPED_ENTRY = re.compile(r"^(?P<potential>.+)/(?P<model>[^/]+)$")
 
 
