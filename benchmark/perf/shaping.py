@@ -1,9 +1,10 @@
 """Shaping overhead: time per step of a shaped environment over the same environment unshaped.
 
 Both are made with ``gymnasium.make`` in the same process and driven by the same actions;
-timings are the fastest of many short interleaved repeats (as ``timeit`` reports): on a
-shared machine the slow repeats are other processes' time, and interleaving makes drift hit
-both alike.
+timings are the fastest of many short interleaved repeats (as ``timeit`` reports), and interleaving
+makes drift hit both alike. Each repeat times the stretches of steps between resets on the
+thread's CPU clock (``--clock thread``, the default), which other processes on a busy machine do
+not advance; ``--clock wall`` uses ``time.perf_counter``.
 Goal: a ratio ≤ 1.25 on the planar tasks for every reference potential (≤ 1.10 on the slower
 MuJoCo environments). The ratio depends on how long the environment's own step takes: the
 planar tasks step in about 20 µs, so a few µs of classification and progress tracking is a
@@ -15,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from collections.abc import Callable
 
 import gymnasium
 import numpy as np
@@ -47,30 +49,42 @@ CASES = [
 GOAL = 1.25
 
 
-def seconds_per_step(env: gymnasium.Env, actions: np.ndarray) -> float:
-    """Wall time per step over ``actions``, resetting on episode ends (resets not counted)."""
+#: the clocks a measurement can read
+CLOCKS: dict[str, Callable[[], float]] = {"thread": time.thread_time, "wall": time.perf_counter}
+
+
+def seconds_per_step(
+    env: gymnasium.Env, actions: np.ndarray, clock: Callable[[], float] = time.thread_time
+) -> float:
+    """Time per step over ``actions`` on ``clock``, resetting on episode ends: each stretch of
+    steps between resets is timed as a whole (resets not counted, nor a clock read per step)."""
     env.reset(seed=0)
     elapsed = 0.0
+    start = clock()
     for action in actions:
-        start = time.perf_counter()
         _, _, terminated, truncated, _ = env.step(action)
-        elapsed += time.perf_counter() - start
         if terminated or truncated:
+            elapsed += clock() - start
             env.reset()
+            start = clock()
+    elapsed += clock() - start
     return elapsed / len(actions)
 
 
-def measure(task: str, potential: str, model: str, steps: int, repeats: int) -> dict:
+def measure(
+    task: str, potential: str, model: str, steps: int, repeats: int, clock: str = "thread"
+) -> dict:
     plain = gymnasium.make(task)
     shaped = gymnasium.make(task, reward="shaped", potential=potential, model=model, gamma=0.99)
     shape = plain.action_space.shape
     actions = np.random.default_rng(0).uniform(-1, 1, (steps, *shape)).astype(np.float32)
-    seconds_per_step(plain, actions[:500])  # warm up both
-    seconds_per_step(shaped, actions[:500])
+    read = CLOCKS[clock]
+    seconds_per_step(plain, actions[:500], read)  # warm up both
+    seconds_per_step(shaped, actions[:500], read)
     plain_times, shaped_times = [], []
     for _ in range(repeats):
-        plain_times.append(seconds_per_step(plain, actions))
-        shaped_times.append(seconds_per_step(shaped, actions))
+        plain_times.append(seconds_per_step(plain, actions, read))
+        shaped_times.append(seconds_per_step(shaped, actions, read))
     plain_s, shaped_s = min(plain_times), min(shaped_times)
     return {
         "task": task,
@@ -86,10 +100,13 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=1000, help="steps per repeat")
     parser.add_argument("--repeats", type=int, default=25, help="interleaved repeats")
+    parser.add_argument(
+        "--clock", choices=sorted(CLOCKS), default="thread", help="what a step's time is read on"
+    )
     args = parser.parse_args(argv)
-    print("shaping overhead (fastest of interleaved repeats, same actions)")
+    print(f"shaping overhead (fastest of interleaved repeats, same actions, {args.clock} clock)")
     print(f"{'task':34s} {'potential':17s} {'model':13s} {'plain µs':>9s} {'shaped µs':>10s} ratio")
-    rows = [measure(*case, args.steps, args.repeats) for case in CASES]
+    rows = [measure(*case, args.steps, args.repeats, args.clock) for case in CASES]
     for r in rows:
         print(
             f"{r['task']:34s} {r['potential']:17s} {r['model']:13s} {r['plain_us']:9.1f} "
