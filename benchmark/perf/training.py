@@ -7,7 +7,9 @@ the replay buffer is past its random steps), then is timed on ``--steps`` more; 
 ``--repeats`` interleaved timings (each repeat does the same work from the same seed, so the
 slower ones measure other processes) is reported with two ratios: shaped over sparse (the cost of
 shaping; goal ≥ 0.95) and this backend over stable-baselines3's same algorithm (the gain of
-SBX). Run ``python -m planshape.perf.training [--json]``.
+SBX). Timings are read on the process's CPU clock (``--clock process``, the default: every
+thread's time, XLA's included, and none of other processes' on a busy machine) or on the wall
+clock (``--clock wall``). Run ``python -m planshape.perf.training [--json]``.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from __future__ import annotations
 import argparse
 import json
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import planshape  # noqa: F401  (registers the tasks)
@@ -36,9 +38,20 @@ CASES: tuple[tuple[str, tuple[str, ...], tuple[str, ...]], ...] = (
 _REFERENCE = {"PPO": "PPO", "SAC": "SAC", "TQC": "SAC", "CrossQ": "SAC"}
 
 
-def steps_per_second(task: str, entry: str, algo: str, steps: int, warmup: int = 0) -> float:
-    """Train ``algo`` on one entry for ``warmup`` steps, then time ``steps`` more (no
-    evaluation)."""
+#: the clocks a timing can read
+CLOCKS: dict[str, Callable[[], float]] = {"process": time.process_time, "wall": time.perf_counter}
+
+
+def steps_per_second(
+    task: str,
+    entry: str,
+    algo: str,
+    steps: int,
+    warmup: int = 0,
+    clock: Callable[[], float] = time.process_time,
+) -> float:
+    """Train ``algo`` on one entry for ``warmup`` steps, then time ``steps`` more on ``clock``
+    (no evaluation)."""
     import torch
 
     torch.set_num_threads(1)
@@ -48,12 +61,12 @@ def steps_per_second(task: str, entry: str, algo: str, steps: int, warmup: int =
     model = make_learner(RunKey(task, entry, algo, 0, steps), settings)
     if warmup:
         model.learn(warmup)
-    start = time.perf_counter()
+    start = clock()
     model.learn(steps, reset_num_timesteps=not warmup)
-    return steps / (time.perf_counter() - start)
+    return steps / (clock() - start)
 
 
-def measure(steps: int, repeats: int, cases=CASES) -> list[dict[str, Any]]:
+def measure(steps: int, repeats: int, cases=CASES, clock: str = "process") -> list[dict[str, Any]]:
     """One row per (task, algorithm, backend, entry)."""
     rows = []
     for task, algos, entries in cases:
@@ -61,7 +74,9 @@ def measure(steps: int, repeats: int, cases=CASES) -> list[dict[str, Any]]:
         for _ in range(repeats):
             for algo, entry in timings:
                 n = steps if "PPO" in algo else max(steps // 16, 64)
-                timings[algo, entry].append(steps_per_second(task, entry, algo, n, warmup=n // 4))
+                timings[algo, entry].append(
+                    steps_per_second(task, entry, algo, n, n // 4, CLOCKS[clock])
+                )
         rate = {k: max(v) for k, v in timings.items()}
         for algo, entry in timings:
             reference = _REFERENCE[learner(algo).cls]
@@ -101,13 +116,27 @@ def render(rows: Sequence[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
+def _tasks() -> str:
+    return ", ".join(dict.fromkeys(task for task, _, _ in CASES))
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=8192, help="PPO steps per timing (SAC: /16)")
     parser.add_argument("--repeats", type=int, default=5, help="interleaved repeats")
     parser.add_argument("--json", action="store_true", help="print the rows as JSON")
+    parser.add_argument(
+        "--clock", choices=sorted(CLOCKS), default="process", help="what a timing is read on"
+    )
+    parser.add_argument(
+        "--task", action="append", help="only these tasks (e.g. planshape/Push-v1; repeatable)"
+    )
     args = parser.parse_args(argv)
-    rows = measure(args.steps, args.repeats)
+    unknown = sorted(set(args.task or ()) - {task for task, _, _ in CASES})
+    if unknown:
+        parser.error(f"--task {unknown[0]}: not measured here; choose from {_tasks()}")
+    cases = [c for c in CASES if not args.task or c[0] in args.task]
+    rows = measure(args.steps, args.repeats, cases, args.clock)
     print(json.dumps(rows, indent=2) if args.json else render(rows))
     return 0
 

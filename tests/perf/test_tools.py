@@ -43,3 +43,18 @@ def test_code_version_ignores_the_benchmarks_own_results(tmp_path, monkeypatch):
     code_version.cache_clear()
     assert code_version().endswith("-dirty")
     code_version.cache_clear()
+
+
+def test_training_throughput_script_refuses_a_task_it_does_not_measure(capsys):
+    import pytest
+
+    with pytest.raises(SystemExit) as stop:
+        perf_training.main(["--task", "planshape/Nope-v1"])
+    assert stop.value.code == 2
+    assert "--task planshape/Nope-v1" in capsys.readouterr().err
+
+
+def test_shaping_overhead_on_either_clock_is_a_positive_time():
+    for clock in ("thread", "wall"):
+        row = perf_shaping.measure("planshape/Reach-v1", "goal-distance", "grid", 100, 1, clock)
+        assert row["plain_us"] > 0 and row["shaped_us"] > 0
