@@ -62,6 +62,13 @@ class Vectorized:
     every classifier of an evaluator has one, the evaluator remembers each answer by its keys,
     and a shaping step costs the keys and one lookup.
 
+    ``key_of_values(values)``, optional with ``key``, is the same key computed from
+    ``obs.tolist()`` of a flat (1-D) observation array. When every classifier of an evaluator
+    has one, the evaluator converts the observation once for all of them instead of each
+    classifier slicing and converting it on its own (on push's two entities, about half of a
+    key's cost). It must equal ``key(obs)``: the evaluator compares the two on the first
+    observation it keys and refuses a classifier whose two keys disagree.
+
     Example:
         >>> import numpy as np
         >>> centres = {"a": 0.0, "b": 1.0}
@@ -75,11 +82,16 @@ class Vectorized:
         [True, False]
         >>> list(near.holding(np.array([0.1]), [("a",), ("b",)]))
         [0]
+        >>> cell = Vectorized(near_all, holding=near_which, key=lambda obs: round(float(obs[0])),
+        ...                   key_of_values=lambda values: round(values[0]))
+        >>> cell.key(np.array([0.9])) == cell.key_of_values(np.array([0.9]).tolist())
+        True
     """
 
     fn: Callable[[np.ndarray, Sequence[tuple[str, ...]]], np.ndarray]
     holding: Callable[[Any, Sequence[tuple[str, ...]]], Iterable[int]] | None = None
     key: Callable[[Any], Hashable] | None = None
+    key_of_values: Callable[[list[Any]], Hashable] | None = None
 
 
 def check_classifiers(task: PddlTask, classifiers: Mapping[str, Classifier]) -> None:
@@ -145,6 +157,14 @@ class AtomEvaluator:
         keys = [getattr(c, "key", None) for _, c, _, _, _ in self._groups]
         self._keys = keys if keys and all(k is not None for k in keys) else None
         self._held_by_key: dict[tuple[Hashable, ...], frozenset[int]] = {}
+        # ... and, when every classifier can key a flat observation's values, from one tolist()
+        readers = [getattr(c, "key_of_values", None) for _, c, _, _, _ in self._groups]
+        self._key_of_values = (
+            _joined_keys(readers)
+            if self._keys is not None and all(r is not None for r in readers)
+            else None
+        )
+        self._key_of_values_checked = False
 
     def __call__(self, obs: Any) -> np.ndarray:
         """Truth of every atom: shape ``batch_shape + (len(atoms),)``.
@@ -190,11 +210,34 @@ class AtomEvaluator:
     def key(self, obs: Any) -> tuple[Hashable, ...]:
         """The classifiers' keys of one observation (only when :attr:`keyed`): observations
         with equal keys have the same atoms holding."""
+        key_of_values = self._key_of_values
+        if key_of_values is not None and type(obs) is np.ndarray and obs.ndim == 1:
+            key = key_of_values(obs.tolist())
+            if not self._key_of_values_checked:
+                self._check_key_of_values(obs, key)
+            return key
+        return self._key_per_classifier(obs)
+
+    def _key_per_classifier(self, obs: Any) -> tuple[Hashable, ...]:
         keys = self._keys
         assert keys is not None, "key() of an evaluator whose classifiers have no key"
         if len(keys) == 1:
             return (keys[0](obs),)
         return tuple([k(obs) for k in keys])
+
+    def _check_key_of_values(self, obs: np.ndarray, key: tuple[Hashable, ...]) -> None:
+        """Refuse classifiers whose ``key_of_values`` disagrees with their ``key``."""
+        for (predicate, *_), fast, slow in zip(
+            self._groups, key, self._key_per_classifier(obs), strict=True
+        ):
+            if fast != slow:
+                raise ClassifierError(
+                    f"the Vectorized classifier of {predicate!r} keys observation "
+                    f"{obs.tolist()} as {slow!r} with key(obs) but as {fast!r} with "
+                    "key_of_values(obs.tolist()); the two must be the same function of the "
+                    "observation: fix key_of_values or leave it out"
+                )
+        self._key_of_values_checked = True
 
     def _holding(self, obs: Any) -> set[int]:
         held: set[int] = set()
@@ -213,6 +256,20 @@ class AtomEvaluator:
                 found = np.flatnonzero(_classify(predicate, classifier, obs, groundings)).tolist()
             held.update(positions[i] for i in found)
         return held
+
+
+def _joined_keys(
+    readers: Sequence[Callable[[list[Any]], Hashable]],
+) -> Callable[[list[Any]], tuple[Hashable, ...]]:
+    """One function giving every classifier's key from one observation's values (one and two
+    classifiers, the common cases, without building a list)."""
+    if len(readers) == 1:
+        (only,) = readers
+        return lambda values: (only(values),)
+    if len(readers) == 2:
+        first, second = readers
+        return lambda values: (first(values), second(values))
+    return lambda values: tuple([read(values) for read in readers])
 
 
 def batch_shape(obs: Any) -> tuple[int, ...]:

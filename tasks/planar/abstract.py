@@ -235,6 +235,19 @@ class InPlace:
         position = self.position
         return lambda obs: cell(*obs[position].tolist())
 
+    @property
+    def key_of_values(self):
+        """:attr:`key` from a flat observation's ``tolist()`` (the same floats, so the same
+        cell), or None where there is no key."""
+        if self.key is None:
+            return None
+        cell = self.places[0].cell
+        position = self.position
+        x = position.start or 0
+        if position.step in (None, 1) and position.stop == x + 2 and x >= 0:  # (x, y) at x, x+1
+            return lambda values: cell(values[x], values[x + 1])
+        return lambda values: cell(*values[position])
+
     def holding(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> list[int]:
         """The positions in ``groundings`` that hold in one observation (see
         :class:`planshape.shaping.abstraction.Vectorized`)."""
@@ -377,7 +390,12 @@ def planar_model(
     one :class:`InPlace` classifier per entity predicate over ``places``, and the geometry
     hooks."""
     classifiers = {
-        predicate: Vectorized(in_place, holding=in_place.holding, key=in_place.key)
+        predicate: Vectorized(
+            in_place,
+            holding=in_place.holding,
+            key=in_place.key,
+            key_of_values=in_place.key_of_values,
+        )
         for predicate, arg, position in entities.values()
         for in_place in [InPlace(places, position, arg)]
     }

@@ -69,3 +69,31 @@ def test_vectorized_classifier_with_wrong_shape_is_refused():
     abstraction = Abstraction(line_task(), {"at": Vectorized(lambda obs, g: np.zeros(2, bool))})
     with pytest.raises(ClassifierError, match=r"shape \(2,\), expected \(3,\)"):
         abstraction.abstract_state(np.array([0.0]))
+
+
+def _cell_classifier(key_of_values):
+    def which(obs, groundings):
+        return np.flatnonzero(near_all(obs, groundings)).tolist()
+
+    return Vectorized(
+        near_all,
+        holding=which,
+        key=lambda obs: round(float(obs[0]) * 10),
+        key_of_values=key_of_values,
+    )
+
+
+def test_keys_from_one_conversion_are_used_and_agree_with_each_classifiers_key():
+    abstraction = Abstraction(line_task(), {"at": _cell_classifier(lambda v: round(v[0] * 10))})
+    evaluator = abstraction.evaluator(list(abstraction.fluent_atoms))
+    for x in np.linspace(-0.1, 1.1, 49):
+        obs = np.array([x])
+        assert evaluator.key(obs) == (round(x * 10),) == evaluator._key_per_classifier(obs)
+        assert evaluator.holding(obs) == set(np.flatnonzero(evaluator(obs)).tolist())
+
+
+def test_a_key_of_values_that_disagrees_with_key_is_refused_naming_the_predicate():
+    abstraction = Abstraction(line_task(), {"at": _cell_classifier(lambda v: round(v[0] * 100))})
+    evaluator = abstraction.evaluator(list(abstraction.fluent_atoms))
+    with pytest.raises(ClassifierError, match=r"classifier of 'at' keys observation \[0.45\]"):
+        evaluator.key(np.array([0.45]))

@@ -147,6 +147,35 @@ def test_remembered_cell_answers_agree_with_the_batch_path(task: str) -> None:
             assert progress.advance(floor, obs) == max(floor, int(furthest))
 
 
+GRID_TASKS = [t for t in PLANAR if "grid" in task_spec(t).models]
+
+
+@pytest.mark.parametrize("task", GRID_TASKS)
+def test_keys_from_one_conversion_of_the_observation_are_each_classifiers_key(task: str):
+    """The grid classifiers key an observation from one ``tolist()`` for all entities
+    (``key_of_values``); that key is each classifier's own ``key(obs)``, for float32 and
+    float64 observations, on cell boundaries too (where a wrong coordinate or rounding would
+    show), and the evaluators use it."""
+    env = gymnasium.make(task, reward="shaped", model="grid", gamma=0.99)
+    progress = env.get_wrapper_attr("progress")
+    evaluator = progress._evaluate
+    assert evaluator._key_of_values is not None
+    classifiers = list(progress.abstraction.classifiers.values())
+    lattice = classifiers[0].fn.places[0]._finder
+    space = env.observation_space
+    rng = np.random.default_rng(2)
+    observations = rng.uniform(space.low - 0.05, space.high + 0.05, (2000, *space.shape))
+    origin = np.resize(lattice.origin, space.shape)  # (x0, y0) under every entity's (x, y)
+    cells = np.round((observations - origin) / lattice.pitch)
+    on_boundaries = origin + (cells + 0.5) * lattice.pitch  # halfway between two cells' centres
+    for obs in [*observations, *on_boundaries]:
+        for typed in (obs.astype(np.float32), obs):
+            values = typed.tolist()
+            for classifier in classifiers:
+                assert classifier.key_of_values(values) == classifier.key(typed)
+            assert evaluator.key(typed) == evaluator._key_per_classifier(typed)
+
+
 @pytest.mark.parametrize(
     "task", ["planshape/Reach-v1", "planshape/Push-v1", "planshape/MazeReach-v1"]
 )
