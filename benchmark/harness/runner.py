@@ -55,6 +55,7 @@ from planshape.harness.profiles import RESULTS_ROOT, RunKey
 from planshape.results.rows import StoredRow, validate_row
 from planshape.shaping.registration import instance_set, task_spec
 from planshape.training.hyperparams import hyperparameters
+from planshape.training.learners import release_compiled
 
 PACKAGES = (
     "planshape",
@@ -326,7 +327,9 @@ def execute(
     spec: RunSpec, tensorboard: str | None = None, *, progress: bool = False
 ) -> list[dict[str, Any]]:
     """Train and evaluate one run; return its tidy rows (one per evaluation point)."""
-    return train(spec, tensorboard, progress=progress)[1]
+    rows = train(spec, tensorboard, progress=progress)[1]
+    release_compiled()  # the learner is gone: free its compiled functions for the next run
+    return rows
 
 
 def train(

@@ -24,7 +24,7 @@ import planshape  # noqa: F401  (registers the tasks)
 from planshape.harness.profiles import RunKey
 from planshape.harness.runner import make_learner
 from planshape.training.hyperparams import hyperparameters
-from planshape.training.learners import learner
+from planshape.training.learners import learner, release_compiled
 
 GOAL = 0.95
 ENTRIES = ("sparse", "plan-based/grid", "plan-distance/grid", "plan-path/grid")
@@ -63,7 +63,10 @@ def steps_per_second(
         model.learn(warmup)
     start = clock()
     model.learn(steps, reset_num_timesteps=not warmup)
-    return steps / (clock() - start)
+    elapsed = clock() - start
+    del model
+    release_compiled()  # dozens of models in one process: free each one's compiled functions
+    return steps / elapsed
 
 
 def measure(steps: int, repeats: int, cases=CASES, clock: str = "process") -> list[dict[str, Any]]:

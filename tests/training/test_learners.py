@@ -3,6 +3,9 @@ sharing the hyperparameter tables, reproducible, and never mixed in a leaderboar
 
 from __future__ import annotations
 
+import dataclasses
+from pathlib import Path
+
 import pytest
 
 import planshape  # noqa: F401  (registers the tasks)
@@ -39,6 +42,32 @@ def test_an_sbx_run_is_reproducible_and_records_its_backend(algo: str) -> None:
     assert first[0]["packages"]["sbx-rl"] != "missing"
     assert first[0]["packages"]["jax"] != "missing"
     assert first[0]["algo"] == algo
+
+
+def _memory_mappings() -> int:
+    with open("/proc/self/maps") as maps:
+        return sum(1 for _ in maps)
+
+
+@pytest.mark.skipif(not Path("/proc/self/maps").exists(), reason="counts Linux memory mappings")
+def test_runs_one_after_another_do_not_pile_up_compiled_code() -> None:
+    """Every SBX run compiles its own functions (about 480 memory mappings for SBX-SAC, which
+    the next run does not reuse); execute frees them after the run, so a benchmark worker's
+    mappings stay flat instead of reaching vm.max_map_count (65,530) after some 130 runs.
+    A run trained after the release has the numbers of the first."""
+    spec = RunSpec.create(RunKey(TASK, "plan-distance/grid", "SBX-SAC", 1, 256), "t", 128, 1)
+    spec = dataclasses.replace(
+        spec, hyperparameters={**spec.hyperparameters, "learning_starts": 64}
+    )
+    first = execute(spec)  # with gradient steps: the update is compiled too
+    before = _memory_mappings()
+    again = [execute(spec) for _ in range(2)]
+    assert _memory_mappings() - before < 300  # 2 × ~480 without the release
+    keep = ("step", "success_rate", "final_distance", "sparse_return")
+    assert all(
+        [{k: r[k] for k in keep} for r in rows] == [{k: r[k] for k in keep} for r in first]
+        for rows in again
+    )
 
 
 def test_backends_are_different_cells() -> None:
