@@ -119,10 +119,6 @@ def render(rows: Sequence[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
-def _tasks() -> str:
-    return ", ".join(dict.fromkeys(task for task, _, _ in CASES))
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=8192, help="PPO steps per timing (SAC: /16)")
@@ -134,11 +130,24 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--task", action="append", help="only these tasks (e.g. planshape/Push-v1; repeatable)"
     )
+    parser.add_argument(
+        "--algo", action="append", help="only these learners (e.g. PPO, SBX-PPO; repeatable)"
+    )
     args = parser.parse_args(argv)
-    unknown = sorted(set(args.task or ()) - {task for task, _, _ in CASES})
-    if unknown:
-        parser.error(f"--task {unknown[0]}: not measured here; choose from {_tasks()}")
-    cases = [c for c in CASES if not args.task or c[0] in args.task]
+    for option, chosen, known in (
+        ("--task", args.task, [task for task, _, _ in CASES]),
+        ("--algo", args.algo, [a for _, algos, _ in CASES for a in algos]),
+    ):
+        unknown = sorted(set(chosen or ()) - set(known))
+        if unknown:
+            choices = ", ".join(dict.fromkeys(known))
+            parser.error(f"{option} {unknown[0]}: not measured here; choose from {choices}")
+    cases = [
+        (task, tuple(a for a in algos if not args.algo or a in args.algo), entries)
+        for task, algos, entries in CASES
+        if not args.task or task in args.task
+    ]
+    cases = [case for case in cases if case[1]]
     rows = measure(args.steps, args.repeats, cases, args.clock)
     print(json.dumps(rows, indent=2) if args.json else render(rows))
     return 0

@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+import pytest
+
 from planshape.perf import shaping as perf_shaping
 from planshape.perf import training as perf_training
 
@@ -45,13 +47,12 @@ def test_code_version_ignores_the_benchmarks_own_results(tmp_path, monkeypatch):
     code_version.cache_clear()
 
 
-def test_training_throughput_script_refuses_a_task_it_does_not_measure(capsys):
-    import pytest
-
+@pytest.mark.parametrize(("option", "value"), [("--task", "planshape/Nope-v1"), ("--algo", "DQN")])
+def test_training_throughput_script_refuses_what_it_does_not_measure(capsys, option, value):
     with pytest.raises(SystemExit) as stop:
-        perf_training.main(["--task", "planshape/Nope-v1"])
+        perf_training.main([option, value])
     assert stop.value.code == 2
-    assert "--task planshape/Nope-v1" in capsys.readouterr().err
+    assert f"{option} {value}: not measured here" in capsys.readouterr().err
 
 
 def test_shaping_overhead_on_either_clock_is_a_positive_time():
