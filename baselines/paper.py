@@ -67,6 +67,15 @@ class TimeVarying(Potential):
     def potential(self, ctx: ShapingContext) -> float:
         return _fraction_done(ctx, self.normalize) / (ctx.t + 1)
 
+    def specialize(self, ctx: ShapingContext) -> StepPotential | None:
+        """:meth:`potential` as a function of (progress, t) alone."""
+        final = ctx.final
+        if not self.normalize:
+            return lambda obs, progress, t: float(progress) / (t + 1)
+        if not final:
+            return lambda obs, progress, t: 0.0 / (t + 1)
+        return lambda obs, progress, t: progress / final / (t + 1)
+
 
 class DistanceVarying(Potential):
     """φ = −scale · distance of the first unmet entity to its place in the next subgoal."""

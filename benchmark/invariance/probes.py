@@ -97,23 +97,29 @@ def hidden_state(
     return ""
 
 
-def step_function_mismatch(potential: Potential, aug: AugmentedMDP, table: np.ndarray) -> str:
+def step_function_mismatch(
+    potential: Potential, aug: AugmentedMDP, table: np.ndarray, t: int = 0
+) -> str:
     """The first augmented state where the potential's step function (what the shaping wrapper
     trains with, :meth:`planshape.shaping.potentials.Potential.specialize`) disagrees with
-    ``table``, φ(·, 0) as the checker tabulated it from ``potential(ctx)``; ``""`` if none does or
-    the potential has no step function."""
+    ``table``, φ(·, t) as the checker tabulated it from ``potential(ctx)`` (a time-dependent
+    potential's step function is given ``t``); ``""`` if none does or the potential has no step
+    function."""
     reachable = np.flatnonzero(aug.reachable & ~aug.mdp.terminal)
     if not reachable.size:
         return ""
     step = potential.step_function(aug.context(int(reachable[0]), 0))
     if step is None:
         return ""
+    timed = potential.time_dependent
     for x in reachable.tolist():
-        fast = potential.scale * step(aug.observation(x), int(aug.plan_progress[x]))
+        obs, progress = aug.observation(x), int(aug.plan_progress[x])
+        fast = potential.scale * (step(obs, progress, t) if timed else step(obs, progress))
         if not _same(fast, table[x]):
+            at = f", t {t}" if timed else ""
             return (
                 f"potential {potential.name!r}: its specialize() gives φ = {fast:.6g} at state "
-                f"{int(aug.state[x])} (progress {int(aug.plan_progress[x])}) where potential() "
+                f"{int(aug.state[x])} (progress {progress}{at}) where potential() "
                 f"gives {table[x]:.6g}; the shaping wrapper trains with specialize(), so it "
                 "would train another φ than the one checked. Make them agree, or remove "
                 "specialize"

@@ -121,9 +121,20 @@ class PotentialBased(Shaping):
         across calls, and, discounted, γ^t·φ that does not vanish; ``""`` if neither."""
         probed = self._probed.setdefault(aug, {})
         if setting.horizon not in probed:  # the same for every setting of that horizon
+            # a time-dependent step function is compared at the first, second and last step
+            times = (0, 1, setting.horizon - 1) if self.potential.time_dependent else (0,)
             probed[setting.horizon] = hidden_state(
                 self.potential, aug, setting.horizon, self._table(aug, 0)
-            ) or step_function_mismatch(self.potential, aug, self._table(aug, 0))
+            ) or next(
+                (
+                    found
+                    for t in sorted(set(times))
+                    if (
+                        found := step_function_mismatch(self.potential, aug, self._table(aug, t), t)
+                    )
+                ),
+                "",
+            )
         found = probed[setting.horizon]
         if not found and setting.kind == "discounted":
             found = growth(self.potential, aug, setting.gamma, setting.horizon)

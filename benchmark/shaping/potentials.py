@@ -50,8 +50,9 @@ if TYPE_CHECKING:
     from planshape.shaping.abstraction import Abstraction
 
 _Value = TypeVar("_Value")
-#: a potential specialized to one plan: (observation, progress) -> φ before scale
-StepPotential = Callable[[Any, int], float]
+#: a potential specialized to one plan: (observation, progress) -> φ before scale, or, for a
+#: ``time_dependent`` potential, (observation, progress, t) -> φ before scale
+StepPotential = Callable[..., float]
 
 
 class Geometry(Protocol):
@@ -296,9 +297,10 @@ class Potential(ABC):
         step instead of building a context and calling :meth:`potential`: the planar tasks
         step in about 20 µs, so a context and the checks of ``__call__`` are a large part of
         a step. The function must return what ``potential`` returns, bit for bit, on every
-        observation and progress of that plan (a test checks each reference potential); it
-        is never given the time index, so a ``time_dependent`` potential cannot have one.
-        A value that is not one finite float sends that step through ``__call__``, which
+        observation and progress of that plan (a test checks each reference potential). A
+        ``time_dependent`` potential's function takes the time index too, ``(observation,
+        progress, t)``, and must agree with ``potential`` at every t. A value that is not one
+        finite float sends that step through ``__call__``, which
         names the problem. Only the class whose body defines ``specialize`` gets the fast
         path (:meth:`step_function`): a subclass that changes how φ is computed falls back to
         :meth:`potential` unless it restates ``specialize = Parent.specialize``.
@@ -317,8 +319,7 @@ class Potential(ABC):
 
     def step_function(self, ctx: ShapingContext) -> StepPotential | None:
         """:meth:`specialize` where this class may use it (see there), else None."""
-        cls = type(self)
-        if self.time_dependent or "specialize" not in cls.__dict__:
+        if "specialize" not in type(self).__dict__:
             return None
         return self.specialize(ctx)
 

@@ -91,6 +91,7 @@ class PotentialShaping(gymnasium.Wrapper):
         self._phi_prev = 0.0
         # the potential specialized to the current plan (Potential.specialize), and for what
         self._step_phi: StepPotential | None = None
+        self._timed = False
         self._specialized_for: tuple[Any, ...] = (None, None, None)
 
     def _context(self, obs: Any) -> ShapingContext:
@@ -106,7 +107,11 @@ class PotentialShaping(gymnasium.Wrapper):
     def _phi(self, obs: Any) -> float:
         step_phi = self._step_phi
         if step_phi is not None:
-            raw = step_phi(obs, self._max_idx)
+            raw = (
+                step_phi(obs, self._max_idx, self._t)
+                if self._timed
+                else step_phi(obs, self._max_idx)
+            )
             if type(raw) is float:  # as Potential.__call__: scale, then check finiteness
                 value = self.potential.scale * raw
                 if value - value == 0.0:
@@ -118,6 +123,7 @@ class PotentialShaping(gymnasium.Wrapper):
         key = (self.potential, self.progress, self.geometry)
         if any(a is not b for a, b in zip(key, self._specialized_for, strict=True)):
             self._step_phi = self.potential.step_function(self._context(obs))
+            self._timed = self.potential.time_dependent  # its step function takes t too
             self._specialized_for = key
 
     def reset(self, **kwargs: Any) -> tuple[Any, dict[str, Any]]:

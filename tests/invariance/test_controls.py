@@ -108,6 +108,29 @@ class FastButWrong(Potential):
         return lambda obs, progress: 2 * progress / final
 
 
+class TimedButTimeless(Potential):
+    """time-varying whose step function forgets the time: right at t = 0 only."""
+
+    time_dependent = True
+
+    def potential(self, ctx):
+        return ctx.progress / ctx.final / (ctx.t + 1)
+
+    def specialize(self, ctx):
+        final = ctx.final
+        return lambda obs, progress, t: progress / final
+
+
+def test_a_time_dependent_step_function_is_compared_after_the_first_step_too():
+    report = check_potential(TimedButTimeless, mdps=["reach"], settings=["finite-horizon"])
+    assert not report.preserved
+    (verdict,) = report.verdicts
+    assert "specialize() gives" in verdict.not_a_potential and ", t 1)" in verdict.not_a_potential
+    assert check_potential(
+        make_potential("time-varying"), mdps=["reach"], settings=["finite-horizon"]
+    ).preserved
+
+
 def test_a_step_function_that_disagrees_with_the_potential_is_caught():
     report = check_potential(FastButWrong, mdps=["reach"], settings=["discounted"])
     assert not report.preserved

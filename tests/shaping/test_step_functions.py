@@ -20,8 +20,10 @@ from planshape.shaping.potentials import Potential, ShapingContext, make_potenti
 from planshape.shaping.registration import task_spec
 from planshape.shaping.wrapper import PotentialShaping
 
-#: every registered potential that does not read the time has a step function
-SPECIALIZED = tuple(p for p in potential_ids() if not make_potential(p).time_dependent)
+#: every registered potential has a step function (a time-dependent one's also takes t)
+SPECIALIZED = tuple(potential_ids())
+#: the time indices a time-dependent step function is compared at
+TIMES = (0, 1, 7, 499)
 #: these remember φ per grid cell, so they have a step function on grid models only
 PER_CELL = (HeuristicPotential, HStarGeodesic)
 #: (task, model, potentials): one plan per case, every potential shaped from it
@@ -41,18 +43,21 @@ def shaping_wrapper(env: gymnasium.Env) -> PotentialShaping:
     return env
 
 
-def contexts(wrapper: PotentialShaping, obs: np.ndarray) -> list[ShapingContext]:
-    """The context of ``obs`` at every progress value of the current plan."""
+def contexts(
+    wrapper: PotentialShaping, obs: np.ndarray, times: tuple[int, ...] = (0,)
+) -> list[ShapingContext]:
+    """The context of ``obs`` at every progress value of the current plan (and time index)."""
     return [
         ShapingContext(
             obs=obs,
             progress=k,
-            t=0,
+            t=t,
             subgoals=wrapper.progress.subgoals,
             geometry=wrapper.geometry,
             abstraction=wrapper.progress.abstraction,
         )
         for k in range(len(wrapper.progress.subgoals))
+        for t in times
     ]
 
 
@@ -72,10 +77,15 @@ def test_step_function_equals_the_potential_bit_for_bit(task, model, potentials)
             per_cell = isinstance(wrapper.potential, PER_CELL)
             assert per_cell and not model.startswith("grid"), potential
             continue
+        timed = wrapper.potential.time_dependent
         rng = np.random.default_rng(0)
         for step in range(80):
-            for ctx in contexts(wrapper, obs):
-                fast = wrapper._step_phi(obs, ctx.progress)
+            for ctx in contexts(wrapper, obs, TIMES if timed else (0,)):
+                fast = (
+                    wrapper._step_phi(obs, ctx.progress, ctx.t)
+                    if timed
+                    else wrapper._step_phi(obs, ctx.progress)
+                )
                 slow = wrapper.potential.potential(ctx)
                 assert type(fast) is float
                 assert repr(fast) == repr(float(slow)), (potential, step, ctx.progress)
@@ -87,7 +97,9 @@ def test_step_function_equals_the_potential_bit_for_bit(task, model, potentials)
     assert checked >= 160
 
 
-@pytest.mark.parametrize("potential", ["plan-distance", "plan-path", "distance-varying"])
+@pytest.mark.parametrize(
+    "potential", ["plan-distance", "plan-path", "distance-varying", "time-varying"]
+)
 def test_shaped_rewards_do_not_depend_on_the_fast_path(monkeypatch, potential):
     """The same rollout with and without step functions gives the same rewards, bit for bit."""
 
@@ -128,10 +140,10 @@ def test_a_subclass_that_changes_phi_does_not_inherit_the_step_function():
     )
 
 
-def test_time_dependent_potentials_get_no_step_function():
+def test_a_time_dependent_potential_has_a_step_function_of_the_time_index_too():
     potential = make_potential("time-varying")
     ctx = ShapingContext(obs=None, progress=1, t=2, subgoals=(frozenset(),) * 3)
-    assert potential.step_function(ctx) is None
+    assert potential.step_function(ctx)(None, 1, 2) == potential.potential(ctx) == 0.5 / 3
 
 
 def test_a_bad_value_from_a_step_function_is_reported_by_the_potential():
