@@ -247,14 +247,17 @@ class AtomEvaluator:
                     if _holds(predicate, classifier, obs, objects):
                         held.add(index)
                 continue
-            if classifier.holding is not None:
+            holding = classifier.holding
+            if holding is not None:
                 try:
-                    found = list(classifier.holding(obs, groundings))
+                    found = holding(obs, groundings)
+                    if type(found) is not list:  # drawn here, so that its errors are named
+                        found = list(found)
                 except Exception as exc:
                     raise _classifier_error(predicate, exc, groundings) from exc
             else:
                 found = np.flatnonzero(_classify(predicate, classifier, obs, groundings)).tolist()
-            held.update(positions[i] for i in found)
+            held.update(map(positions.__getitem__, found))
         return held
 
 

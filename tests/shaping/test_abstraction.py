@@ -97,3 +97,14 @@ def test_a_key_of_values_that_disagrees_with_key_is_refused_naming_the_predicate
     evaluator = abstraction.evaluator(list(abstraction.fluent_atoms))
     with pytest.raises(ClassifierError, match=r"classifier of 'at' keys observation \[0.45\]"):
         evaluator.key(np.array([0.45]))
+
+
+def test_a_holding_generator_that_raises_is_named_like_the_classifier():
+    def lazily(obs, groundings):
+        yield 0
+        raise KeyError("middle")
+
+    abstraction = Abstraction(line_task(), {"at": Vectorized(near_all, holding=lazily)})
+    evaluator = abstraction.evaluator(list(abstraction.fluent_atoms))
+    with pytest.raises(ClassifierError, match=r"'at' raised KeyError"):
+        evaluator.holding(np.array([0.0]))
