@@ -73,7 +73,7 @@ class TimeVarying(Potential):
         if not self.normalize:
             return lambda obs, progress, t: float(progress) / (t + 1)
         if not final:
-            return lambda obs, progress, t: 0.0 / (t + 1)
+            return lambda obs, progress, t: 0.0
         return lambda obs, progress, t: progress / final / (t + 1)
 
 

@@ -121,24 +121,24 @@ class PotentialBased(Shaping):
         across calls, and, discounted, γ^t·φ that does not vanish; ``""`` if neither."""
         probed = self._probed.setdefault(aug, {})
         if setting.horizon not in probed:  # the same for every setting of that horizon
-            # a time-dependent step function is compared at the first, second and last step
-            times = (0, 1, setting.horizon - 1) if self.potential.time_dependent else (0,)
             probed[setting.horizon] = hidden_state(
                 self.potential, aug, setting.horizon, self._table(aug, 0)
-            ) or next(
-                (
-                    found
-                    for t in sorted(set(times))
-                    if (
-                        found := step_function_mismatch(self.potential, aug, self._table(aug, t), t)
-                    )
-                ),
-                "",
-            )
+            ) or self._step_function_mismatch(aug, setting.horizon)
         found = probed[setting.horizon]
         if not found and setting.kind == "discounted":
             found = growth(self.potential, aug, setting.gamma, setting.horizon)
         return found
+
+    def _step_function_mismatch(self, aug: AugmentedMDP, horizon: int) -> str:
+        """:func:`step_function_mismatch` at t = 0, and for a time-dependent potential also at
+        the second and the last step of the horizon."""
+        last = horizon - 1
+        times = sorted({0, min(1, last), last}) if self.potential.time_dependent else [0]
+        for t in times:
+            found = step_function_mismatch(self.potential, aug, self._table(aug, t), t)
+            if found:
+                return found
+        return ""
 
     def values(self, aug: AugmentedMDP, t: int, time_dependent: bool) -> np.ndarray:
         """φ(x, t) of every augmented state (φ(x, 0) when φ does not depend on time)."""
