@@ -13,17 +13,24 @@ so each entity has to reach the next one (the end effector the box), and the las
 get onto the plan's path and follow it to the goal; d0 is the same quantity at Ŝ[0]'s places
 (the path's length if Ŝ[0] does not place every entity, 1 m if that is 0), so φ ≈ −1 at the
 start and 0 at the goal. The entities must be positions in one frame (the geometry's
-``shared_frame``) when there is more than one. The way onto the path is a straight
-line to its nearest profitable point, which may lie on a later segment: off the path, walls
-are not respected (the grid models' paths go around them; h-star-geodesic respects them
-everywhere).
+``shared_frame``) when there is more than one.
+
+What ``rest`` measures, in fact, is the way onto P's *last segment* and along it: the
+minimum is always there. Each segment's value is the distance from x to its nearest point p
+plus the length of P after p; the next segment's value is at most the straight way to that
+segment's start plus the length after it, which by the triangle inequality is at most the
+current segment's value. So the values never grow along P, and the earlier segments tie at
+best (the tests find the least value on the last segment, up to a tie's rounding, at random
+points around each planar task's plan). The plan's path before its last segment does not
+enter φ: with the grid models, whose last segment is one cell into the goal, plan-path is the
+``goal-distance`` control to within a cell, and walls are not respected anywhere
+(h-star-geodesic respects them).
 
 Unlike ``plan-distance`` it does not read the plan progress max_idx: φ is a function of the
 observation alone, continuous, with no jump when a subgoal is reached or skipped. A learner's
 critic, which sees the observation but not max_idx, can represent the shaped value exactly.
 With the straight segment from em's start to its goal in place of P this is ``goal-distance``,
-the hand-crafted dense reward's distance; the plan contributes the path (around the maze's
-walls; along the push plan's cells).
+the hand-crafted dense reward's distance; the plan contributes only P's last segment (above).
 
 Example:
     >>> from planshape.shaping.potentials import ShapingContext
@@ -99,6 +106,10 @@ class Polyline:
         (3.0, 3.0, 1.5, 1.0)
     """
 
+    #: a planar point's candidate segments are remembered per square cell of this fraction of
+    #: the shortest segment (see :meth:`_candidates`)
+    CELL_FRACTION = 1 / 8
+
     def __init__(self, points: Sequence[Any]):
         self.points = np.asarray(points, float)
         if len(self.points) == 0:
@@ -118,6 +129,9 @@ class Polyline:
         # the segment's value from below, so the search stops once it reaches the best value
         self._backwards = self._segments[::-1]
         self._first = self.points[0].tolist()
+        positive = lengths[lengths > 0]
+        self._cell = float(positive.min()) * self.CELL_FRACTION if positive.size else 1.0
+        self._near: dict[tuple[int, int], list[tuple]] = {}
 
     def rest(self, x: Any) -> float:
         """min over points q of the path of |x − q| + the path's length after q."""
@@ -130,17 +144,37 @@ class Polyline:
         if len(x) != 2:
             return self._rest_any(np.asarray(x, float))
         px, py = x
-        best = math.inf
-        for (ax, ay), (dx, dy), squared, length, after in self._backwards:
-            if after >= best:  # this segment and every earlier one: value ≥ after ≥ best
-                break
-            ox, oy = px - ax, py - ay
-            t = (ox * dx + oy * dy) / squared if squared else 0.0
-            t = 0.0 if t < 0.0 else 1.0 if t > 1.0 else t
-            value = math.hypot(ox - t * dx, oy - t * dy) + (1.0 - t) * length + after
-            if value < best:
-                best = value
-        return best
+        cell = self._cell
+        try:
+            key = (math.floor(px / cell), math.floor(py / cell))
+        except (ValueError, OverflowError):  # NaN or infinite: no cell, search every segment
+            return _least(self._backwards, px, py)
+        candidates = self._near.get(key)
+        if candidates is None:
+            candidates = self._candidates(key)
+        return _least(candidates, px, py)
+
+    def _candidates(self, key: tuple[int, int]) -> list[tuple]:
+        """The segments that can give the least value somewhere in the square cell ``key``,
+        in :attr:`_backwards`' order, remembered.
+
+        A segment's value (its distance to x plus the way along it and after it) is
+        2-Lipschitz in x: the distance to a segment is 1-Lipschitz, and so is the way left
+        along it, (1 − t)·|d| with t the clamped projection. So within the cell, of
+        half-diagonal r around its centre c, segment i can only be least where
+        value_i(c) − 2r ≤ min_j value_j(c) + 2r; the others are left out (with 1e-9 m of
+        slack for rounding). The least of the rest is the least of all, bit for bit: the
+        least segments' floats are among them.
+        """
+        if len(self._near) >= 1 << 16:
+            self._near.clear()
+        cell = self._cell
+        cx, cy = (key[0] + 0.5) * cell, (key[1] + 0.5) * cell
+        values = [_least([segment], cx, cy) for segment in self._backwards]
+        bound = min(values) + 4 * (cell * 0.70711) + 1e-9
+        kept = [s for s, value in zip(self._backwards, values, strict=True) if value <= bound]
+        self._near[key] = kept
+        return kept
 
     def _rest_any(self, x: np.ndarray) -> float:
         """:meth:`rest` in any dimension, with numpy."""
@@ -153,6 +187,23 @@ class Polyline:
         )
         off = np.linalg.norm(x - (starts + t[:, None] * steps), axis=1)
         return float(np.min(off + (1.0 - t) * lengths + self._after))
+
+
+def _least(segments: Sequence[tuple], px: float, py: float) -> float:
+    """min over ``segments`` (each (start, step, squared length, length, length after it), the
+    last segment of the path first, so in ascending order of the length after them) of the way
+    from (px, py) onto the segment, along it and after it."""
+    best = math.inf
+    for (ax, ay), (dx, dy), squared, length, after in segments:
+        if after >= best:  # this segment and every earlier one: value ≥ after ≥ best
+            break
+        ox, oy = px - ax, py - ay
+        t = (ox * dx + oy * dy) / squared if squared else 0.0
+        t = 0.0 if t < 0.0 else 1.0 if t > 1.0 else t
+        value = math.hypot(ox - t * dx, oy - t * dy) + (1.0 - t) * length + after
+        if value < best:
+            best = value
+    return best
 
 
 def entity_path(geometry: Geometry, subgoals: Sequence[Any], entity: str) -> Polyline:

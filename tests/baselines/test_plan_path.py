@@ -92,7 +92,34 @@ def test_a_function_of_the_observation_alone_and_lipschitz():
         previous = value
 
 
-def test_maze_reach_follows_the_plan_around_the_wall():
+@pytest.mark.parametrize(
+    ("task", "model", "entity"),
+    [
+        ("planshape/Reach-v1", "grid", "ee"),
+        ("planshape/MazeReach-v1", "grid", "ee"),
+        ("planshape/MazeReach-v1", "multi", "ee"),
+        ("planshape/Push-v1", "grid", "box"),
+        ("planshape/Push-v1", "grid-diagonal", "box"),
+    ],
+)
+def test_rest_is_the_way_onto_the_last_segment(task, model, entity):
+    """The least segment value is always the last segment's (the module docstring's triangle
+    inequality): the path before it does not enter φ. Equal up to rounding (an earlier
+    segment that ties may round one bit lower) at random points around the plan, the wall's
+    far side included."""
+    env = shaped(task, model)
+    path = plan_path.entity_path(
+        env.get_wrapper_attr("geometry"), env.get_wrapper_attr("progress").subgoals, entity
+    )
+    assert len(path._segments) > 1
+    last = [path._backwards[0]]
+    rng = np.random.default_rng(2)
+    low, high = path.points.min(axis=0) - 0.2, path.points.max(axis=0) + 0.2
+    for x in rng.uniform(low, high, (5000, 2)).tolist():
+        assert path.rest(x) == pytest.approx(plan_path._least(last, *x), rel=0, abs=1e-12)
+
+
+def test_maze_reach_path_goes_around_the_wall():
     env = shaped("planshape/MazeReach-v0", "grid")
     path = plan_path.entity_path(
         env.get_wrapper_attr("geometry"), env.get_wrapper_attr("progress").subgoals, "ee"
@@ -111,6 +138,25 @@ def test_no_place_for_the_last_entity_is_a_clear_error():
         make_potential("plan-path")(ctx)
 
 
+def least_over_every_segment(path: Polyline, x: list[float]) -> float:
+    """The exact minimum of every segment's value, in rest's arithmetic, with no shortcut."""
+    return min(
+        math.hypot(
+            x[0] - ax - t * dx,
+            x[1] - ay - t * dy,
+        )
+        + (1.0 - t) * length
+        + after
+        for (ax, ay), (dx, dy), squared, length, after in path._segments
+        for t in [
+            min(
+                max(((x[0] - ax) * dx + (x[1] - ay) * dy) / squared if squared else 0.0, 0.0),
+                1.0,
+            )
+        ]
+    )
+
+
 def test_rest_stops_early_but_equals_the_minimum_over_every_segment():
     """The search stops once the length after a segment reaches the best value found; the
     result must be the exact minimum over all segments (stored runs depend on its bits)."""
@@ -118,19 +164,57 @@ def test_rest_stops_early_but_equals_the_minimum_over_every_segment():
     points = np.cumsum(rng.uniform(-0.05, 0.05, (30, 2)), axis=0)
     path = Polyline(points)
     for x in rng.uniform(-0.3, 0.3, (500, 2)).tolist():
-        every = min(
-            math.hypot(
-                x[0] - ax - t * dx,
-                x[1] - ay - t * dy,
-            )
-            + (1.0 - t) * length
-            + after
-            for (ax, ay), (dx, dy), squared, length, after in path._segments
-            for t in [
-                min(
-                    max(((x[0] - ax) * dx + (x[1] - ay) * dy) / squared if squared else 0.0, 0.0),
-                    1.0,
-                )
-            ]
-        )
-        assert path.rest(x) == every
+        assert path.rest(x) == least_over_every_segment(path, x)
+
+
+@pytest.mark.parametrize("task", ["planshape/Reach-v1", "planshape/MazeReach-v1"])
+def test_cell_candidates_give_the_minimum_over_every_segment_bit_for_bit(task):
+    """rest searches only the segments that can be least in x's cell: on the grid models'
+    paths (straight runs of cells, whose segments tie exactly where x is behind them) its
+    result is the exact minimum over every segment, at many points of each cell, on the
+    cells' edges and corners, and off the path."""
+    env = gymnasium.make(task, reward="shaped", potential="plan-path", model="grid", gamma=0.99)
+    env.reset(seed=0)
+    wrapper = env
+    while not hasattr(wrapper, "potential"):
+        wrapper = wrapper.env
+    path = plan_path.entity_path(wrapper.geometry, wrapper.progress.subgoals, "ee")
+    assert len(path._segments) > 10  # around the wall (reach) or the U (maze-reach)
+    cell = path._cell
+    rng = np.random.default_rng(1)
+    low, high = path.points.min(axis=0) - 0.1, path.points.max(axis=0) + 0.1
+    samples = rng.uniform(low, high, (3000, 2)).tolist()
+    # many points inside a few cells, and the cells' own edges and corners
+    corners = np.floor(rng.uniform(low, high, (50, 2)) / cell) * cell
+    samples += (corners[:, None, :] + rng.uniform(0, cell, (50, 20, 2))).reshape(-1, 2).tolist()
+    samples += corners.tolist() + (corners + np.array([cell, 0.0])).tolist()
+    samples += path.points.tolist()
+    for x in samples:
+        assert path.rest(x) == least_over_every_segment(path, x), x
+    assert path._near and max(map(len, path._near.values())) < len(path._segments)
+
+
+def test_cell_candidates_on_segments_whose_least_changes_within_a_cell():
+    """The same on segments whose values cross everywhere (arbitrary segments with ascending
+    lengths after them, as rest's search order needs): here the least segment changes inside
+    cells, so a candidate set without the Lipschitz margin misses it (with no margin 264 of
+    these 60,000 points differ, with a margin of one cell 4)."""
+    for seed in range(3):
+        rng = np.random.default_rng(seed)
+        path = Polyline(np.cumsum(rng.uniform(-0.05, 0.05, (12, 2)), axis=0))
+        segments, after = [], 0.0
+        for _ in range(12):
+            start, step = rng.uniform(-0.2, 0.2, 2), rng.uniform(-0.1, 0.1, 2)
+            length = float(np.hypot(*step))
+            segments.append((start.tolist(), step.tolist(), length * length, length, after))
+            after += float(rng.uniform(0, 0.03))
+        path._backwards, path._segments = segments, segments[::-1]
+        for x in rng.uniform(-0.3, 0.3, (20000, 2)).tolist():
+            assert path.rest(x) == least_over_every_segment(path, x), x
+
+
+def test_rest_of_a_point_with_no_cell():
+    """NaN and infinite coordinates fall back to the search over every segment."""
+    path = Polyline([(0, 0), (0, 1), (1, 1)])
+    assert path.rest([math.inf, 0.0]) == math.inf
+    assert path.rest([math.nan, 0.0]) == math.inf  # no segment's value compares below inf
