@@ -5,6 +5,10 @@
   observation of a shaping step a few small numpy operations cost more than the test itself, so
   the index hashes the regions into square buckets as wide as the largest region and tests a
   point only against the few regions that overlap its bucket.
+* :class:`MembershipCells`: which of a :class:`RegionIndex`'s regions contain a point,
+  remembered per cell of a fine square lattice wherever it is the same at every point of the
+  cell (tested exactly near the regions' rims): a *key* for the region classifiers, so that
+  the shaping step looks an answer up as it does on a grid model.
 * :class:`Lattice`: the cells of a square grid that tiles the plane. A point is in exactly one
   cell, found by rounding, on the batch path and the one-point path alike. Squares tested one by
   one would leave points on a shared edge in no cell or, where rounding puts two centres a hair
@@ -60,6 +64,10 @@ class RegionIndex:
         for value in sizes if per_region else [float(size)]:
             if not value > 0:
                 raise ValueError(f"region size must be positive, not {value}")
+        #: per region: centre x, centre y, half side or radius, square
+        self.regions = [
+            (cx, cy, r, bool(sq)) for (cx, cy), r, sq in zip(centres, sizes, squares, strict=True)
+        ]
         self._width = 2.0 * max(sizes, default=1.0)
         # per bucket, the regions overlapping it: (position, centre, half side or squared
         # radius, square)
@@ -87,6 +95,76 @@ class RegionIndex:
             if inside:
                 found.append(index)
         return found
+
+
+#: a cell of :class:`MembershipCells` not classified yet (None marks a cell on a rim)
+_UNSEEN = object()
+
+
+class MembershipCells:
+    """:meth:`RegionIndex.containing` as a tuple, remembered per cell of a square lattice of
+    side ``cell`` for the cells that no region's boundary crosses.
+
+    A cell that every region either contains whole or misses whole (with a relative margin of
+    1e-9 on the squared radius or the half side, far above rounding) has one answer at all its
+    points: it is computed once, at the cell's first visit, and looked up after. A cell that a
+    boundary crosses is answered by the index, point by point. So the answer is always the
+    index's, and for the region classifiers it is a key (the same key, the same regions, the
+    same atoms hold) that costs two divisions and a dictionary lookup.
+
+    Example:
+        >>> index = RegionIndex([(0.0, 0.0), (0.1, 0.0)], size=0.05)
+        >>> cells = MembershipCells(index, cell=0.01)
+        >>> cells.containing(0.0, 0.0), cells.containing(0.049, 0.0), cells.containing(0.3, 0.3)
+        ((0,), (0,), ())
+    """
+
+    def __init__(self, index: RegionIndex, cell: float):
+        if not cell > 0:
+            raise ValueError(f"cell side must be positive, not {cell}")
+        self._index = index
+        self._cell = float(cell)
+        self._answers: dict[tuple[int, int], tuple[int, ...] | None] = {}
+
+    def containing(self, x: float, y: float) -> tuple[int, ...]:
+        """Positions of the regions that contain ``(x, y)``, in increasing order."""
+        cell = self._cell
+        key = (math.floor(x / cell), math.floor(y / cell))  # NaN raises, as the index does
+        answer = self._answers.get(key, _UNSEEN)
+        if answer is _UNSEEN:
+            if len(self._answers) >= 1 << 16:
+                self._answers.clear()
+            answer = self._answers[key] = self._uniform(key)
+        if answer is None:  # a region's boundary crosses the cell
+            return tuple(self._index.containing(x, y))
+        return answer  # type: ignore[return-value]
+
+    def _uniform(self, key: tuple[int, int]) -> tuple[int, ...] | None:
+        """The regions containing the whole cell ``key`` when no region's boundary crosses it
+        (else None). The cell is widened by a millionth of its side: a point whose division
+        rounds into the next cell lies within that of it."""
+        slack = self._cell * 1e-6
+        x0, y0 = key[0] * self._cell - slack, key[1] * self._cell - slack
+        x1, y1 = (key[0] + 1) * self._cell + slack, (key[1] + 1) * self._cell + slack
+        inside = []
+        for position, (cx, cy, r, square) in enumerate(self._index.regions):
+            # the cell's nearest and farthest offsets from the centre, per axis
+            near_x, near_y = max(x0 - cx, 0.0, cx - x1), max(y0 - cy, 0.0, cy - y1)
+            far_x, far_y = max(abs(x0 - cx), abs(x1 - cx)), max(abs(y0 - cy), abs(y1 - cy))
+            if square:
+                whole, none = (
+                    max(far_x, far_y) < r * (1 - 1e-9),
+                    max(near_x, near_y) > r * (1 + 1e-9),
+                )
+            else:
+                limit = r * r
+                whole = far_x * far_x + far_y * far_y < limit * (1 - 1e-9)
+                none = near_x * near_x + near_y * near_y > limit * (1 + 1e-9)
+            if whole:
+                inside.append(position)
+            elif not none:
+                return None
+        return tuple(inside)
 
 
 class Lattice:

@@ -35,7 +35,7 @@ Example:
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Hashable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -46,7 +46,7 @@ from planshape.shaping.abstraction import Vectorized
 from planshape.shaping.registration import AbstractModel
 from planshape.tasks.common import generated_file, pddl_file
 from planshape.tasks.planar.geometry import GEOMETRY, Point, Rect
-from planshape.tasks.regions import Lattice, RegionIndex
+from planshape.tasks.regions import Lattice, MembershipCells, RegionIndex
 
 #: side of a grid cell (m): 2.5 steps of the end effector, and the box's contact distance.
 CELL = 0.05
@@ -170,6 +170,10 @@ class InPlace:
     """Vectorized classifier: the entity at ``obs[position]`` is in the place named by argument
     ``place_arg`` of each grounding (``robot_at ?p`` -> 0, ``object_at ?b ?p`` -> 1)."""
 
+    #: the waypoint models' key remembers the regions per square cell of this fraction of the
+    #: smallest region's radius (or half side)
+    MEMBERSHIP_CELL_FRACTION = 1 / 8
+
     def __init__(self, places: Sequence[Places], position: slice, place_arg: int):
         self.places = places
         self.position = position
@@ -177,6 +181,7 @@ class InPlace:
         # routes per list of groundings: each evaluator (progress tracking, full abstract
         # states) passes its own fixed list, so one route is built per list, once
         self._routes: dict[int, Route] = {}
+        self._membership: MembershipCells | None = None
 
     def _route(self, groundings: Sequence[tuple[str, ...]]) -> Route:
         """Which place table answers which grounding, and whether one table answers all."""
@@ -225,28 +230,53 @@ class InPlace:
             route = self._routes[id(groundings)] = self._route(groundings)
         return route
 
+    def _point_key(self) -> Callable[[float, float], Hashable] | None:
+        """What holds is a function of this (:class:`planshape.shaping.abstraction.Vectorized`'s
+        ``key``): the grid cell of the entity, when the only place table is a grid; the regions
+        of every table that contain it, remembered per small cell where no region's rim
+        crosses it (:class:`planshape.tasks.regions.MembershipCells`), when no table is a grid;
+        else None."""
+        if len(self.places) == 1 and self.places[0].grid:
+            return self.places[0].cell
+        if any(table.grid for table in self.places):
+            return None
+        if self._membership is None:
+            regions = [
+                (centre, table.size, table.square)
+                for table in self.places
+                for centre in [
+                    *table.centres.values(),
+                    *(p for ps in table.alternatives.values() for p in ps),
+                ]
+            ]
+            index = RegionIndex(
+                [c for c, _, _ in regions], [r for _, r, _ in regions], [q for _, _, q in regions]
+            )
+            smallest = min(table.size for table in self.places)
+            self._membership = MembershipCells(index, smallest * self.MEMBERSHIP_CELL_FRACTION)
+        return self._membership.containing
+
     @property
     def key(self):
-        """The grid cell of the entity, when the only place table is a grid (what holds is a
-        function of it: :class:`planshape.shaping.abstraction.Vectorized`'s ``key``), else None."""
-        if len(self.places) != 1 or not self.places[0].grid:
+        """The key of one observation (see :meth:`_point_key`), or None."""
+        point_key = self._point_key()
+        if point_key is None:
             return None
-        cell = self.places[0].cell
         position = self.position
-        return lambda obs: cell(*obs[position].tolist())
+        return lambda obs: point_key(*obs[position].tolist())
 
     @property
     def key_of_values(self):
         """:attr:`key` from a flat observation's ``tolist()`` (the same floats, so the same
-        cell), or None where there is no key."""
-        if self.key is None:
+        key), or None where there is no key."""
+        point_key = self._point_key()
+        if point_key is None:
             return None
-        cell = self.places[0].cell
         position = self.position
         x = position.start or 0
         if position.step in (None, 1) and position.stop == x + 2 and x >= 0:  # (x, y) at x, x+1
-            return lambda values: cell(values[x], values[x + 1])
-        return lambda values: cell(*values[position])
+            return lambda values: point_key(values[x], values[x + 1])
+        return lambda values: point_key(*values[position])
 
     def holding(self, obs: np.ndarray, groundings: Sequence[tuple[str, ...]]) -> list[int]:
         """The positions in ``groundings`` that hold in one observation (see

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from planshape.tasks.regions import RegionIndex
+from planshape.tasks.regions import MembershipCells, RegionIndex
 
 #: multiples of 1/16 and power-of-two sizes, so that points exactly on a boundary are exact
 coordinate = st.integers(-16, 16).map(lambda k: k / 16)
@@ -56,3 +56,46 @@ def test_a_grid_of_cells_gives_one_cell_per_interior_point():
 def test_size_must_be_positive():
     with pytest.raises(ValueError, match="positive"):
         RegionIndex([(0.0, 0.0)], 0.0)
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    centres=st.lists(st.tuples(coordinate, coordinate), min_size=1, max_size=8),
+    sizes=st.lists(st.sampled_from([1 / 16, 1 / 8, 1 / 4, 0.3]), min_size=8, max_size=8),
+    squares=st.lists(st.booleans(), min_size=8, max_size=8),
+    cell=st.sampled_from([1 / 64, 0.01, 0.037]),
+    seed=st.integers(0, 2**16),
+)
+def test_membership_cells_answer_as_the_index_on_both_sides_of_every_rim(
+    centres, sizes, squares, cell, seed
+):
+    """Points just inside and just outside each region's rim (and on it), in a random order,
+    so that a cell a rim crosses is often first seen from one side and then asked about a
+    point on the other: remembering that cell's answer would be caught."""
+    n = len(centres)
+    index = RegionIndex(centres, sizes[:n], square=squares[:n])
+    cells = MembershipCells(index, cell)
+    rng = np.random.default_rng(seed)
+    points = []
+    for (cx, cy), r in zip(centres, sizes, strict=False):
+        angles = rng.uniform(0, 2 * np.pi, 40)
+        for scale in (1 - 1e-3, 1.0, 1 + 1e-3, 1 - 0.5 * cell / r, 1 + 0.5 * cell / r):
+            points += np.column_stack(
+                [cx + scale * r * np.cos(angles), cy + scale * r * np.sin(angles)]
+            ).tolist()
+            points += [[cx + scale * r, cy], [cx, cy - scale * r], [cx + scale * r, cy + r]]
+    rng.shuffle(points)
+    for x, y in points:
+        assert cells.containing(x, y) == tuple(index.containing(x, y)), (x, y)
+
+
+def test_membership_cells_remember_only_cells_no_rim_crosses():
+    index = RegionIndex([(0.0, 0.0)], 0.1)
+    cells = MembershipCells(index, 0.01)
+    assert cells.containing(0.0, 0.0) == (0,) and cells.containing(0.5, 0.5) == ()
+    assert cells.containing(0.0999, 0.0) == (0,) and cells.containing(0.1001, 0.0) == ()
+    remembered = cells._answers
+    assert remembered[(0, 0)] == (0,) and remembered[(50, 50)] == ()
+    assert remembered[(9, 0)] is None and remembered[(10, 0)] is None  # the rim crosses them
+    with pytest.raises(ValueError):  # as RegionIndex and Lattice: no region for NaN
+        cells.containing(float("nan"), 0.0)
