@@ -317,6 +317,7 @@ class PlanarGeometryHooks:
         #: entity -> (predicate that places it, argument index of the place, obs slice)
         self.entities = dict(entities)
         self._located: dict[AbstractState, dict[str, np.ndarray]] = {}
+        self._slices = [(entity, s) for entity, (_, _, s) in self.entities.items()]
 
     def _centre(self, name: str) -> np.ndarray:
         for table in self.places:
@@ -337,8 +338,8 @@ class PlanarGeometryHooks:
     def positions(self, obs: np.ndarray) -> Mapping[str, list[float]]:
         """Each entity's coordinates in one observation, as plain floats (the distance
         potentials measure them with ``math``, several times faster than on numpy 2-vectors)."""
-        values = np.asarray(obs).tolist()
-        return {entity: values[s] for entity, (_, _, s) in self.entities.items()}
+        values = obs.tolist() if type(obs) is np.ndarray else np.asarray(obs).tolist()
+        return {entity: values[s] for entity, s in self._slices}
 
 
 EE = slice(0, 2)
