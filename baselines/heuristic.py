@@ -480,11 +480,16 @@ class HStarGeodesic(_BoundPotential):
                 return self._along(model, (h, moves), geometry, here.obs)
             return h, model.normalizer, tuple(moves)
 
-        def measure(remembered: Any, obs: Any) -> float:
+        of_values = getattr(geometry, "positions_of_values", None)
+
+        def measure(remembered: Any, obs: Any, values: list[Any] | None) -> float:
             if type(remembered) is float:
                 return remembered
             h, normalizer, moves = remembered
-            positions = geometry.positions(obs)
+            if values is not None and of_values is not None:  # obs.tolist() made once
+                positions = of_values(values)
+            else:
+                positions = geometry.positions(obs)
             left = math.inf
             for entity, a, b, length in moves:
                 p = positions[entity]
@@ -503,27 +508,34 @@ def _per_key(
     potential: _BoundPotential,
     ctx: ShapingContext,
     remember: Callable[[ShapingContext], Any],
-    measure: Callable[[Any, Any], float] | None = None,
+    measure: Callable[[Any, Any, list[Any] | None], float] | None = None,
 ) -> StepPotential | None:
     """A step function that remembers, per key of the model's classifiers, what
     ``remember(context)`` gives for the first observation seen with that key (observations
-    with one key have one abstract state), and returns it, or ``measure(remembered, obs)``.
-    None when the classifiers have no keys (the model's places are not one grid)."""
+    with one key have one abstract state), and returns it, or ``measure(remembered, obs,
+    values)``, where ``values`` is ``obs.tolist()`` when the key was read from it (a flat
+    observation whose classifiers can key values), else None. None when the classifiers have
+    no keys (the model's places are neither one grid nor regions)."""
     classify = potential._model(ctx).binding._classify
     if classify is None or not classify.keyed:
         return None
     subgoals, geometry, abstraction = ctx.subgoals, ctx.geometry, ctx.abstraction
     remembered: dict[tuple[Any, ...], Any] = {}
+    key_of_values = classify.values_key(ctx.obs)
 
     def phi(obs: Any, progress: int) -> float:
-        key = classify.key(obs)
+        if key_of_values is not None and type(obs) is np.ndarray and obs.ndim == 1:
+            values = obs.tolist()
+            key = key_of_values(values)
+        else:
+            values, key = None, classify.key(obs)
         value = remembered.get(key)
         if value is None:
             if len(remembered) >= 1 << 16:
                 remembered.clear()
             here = ShapingContext(obs, progress, 0, subgoals, geometry, abstraction)
             value = remembered[key] = remember(here)
-        return value if measure is None else measure(value, obs)
+        return value if measure is None else measure(value, obs, values)
 
     return phi
 

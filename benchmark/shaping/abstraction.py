@@ -218,6 +218,15 @@ class AtomEvaluator:
             return key
         return self._key_per_classifier(obs)
 
+    def values_key(self, obs: Any) -> Callable[[list[Any]], tuple[Hashable, ...]] | None:
+        """:meth:`key` of a flat observation array from its ``tolist()``, for a caller that
+        converts the observation once for several uses; None where the classifiers cannot key
+        values or ``obs`` (a sample, checked here as :meth:`key` checks) is not flat."""
+        if self._key_of_values is None or type(obs) is not np.ndarray or obs.ndim != 1:
+            return None
+        self.key(obs)
+        return self._key_of_values
+
     def _key_per_classifier(self, obs: Any) -> tuple[Hashable, ...]:
         keys = self._keys
         assert keys is not None, "key() of an evaluator whose classifiers have no key"

@@ -64,6 +64,11 @@ class Geometry(Protocol):
     are positions in one frame (so that the distance between two entities means something)
     sets ``shared_frame = True``; potentials that chain entities (``goal-distance``,
     ``plan-path``) need it when there is more than one entity.
+
+    Optional: ``positions_of_values(values)``, the same positions from a flat (1-D)
+    observation's ``obs.tolist()``, lets a step function that also keys the observation's
+    classifiers convert it once (the planar tasks have it; see
+    :class:`planshape.shaping.abstraction.Vectorized`'s ``key_of_values``).
     """
 
     #: whether the entities' coordinates are positions in one frame (see above); a geometry

@@ -32,7 +32,7 @@ Example:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any, Literal
 
 import numpy as np
@@ -97,6 +97,9 @@ class PlanProgress:
         self._exact = {need: i for i, need in enumerate(self._needs)}
         self._keyed = self.match == "fluents" and self._evaluate.keyed
         self._furthest_by_key: dict[tuple[tuple[Any, ...], int], int] = {}
+        # the key of a flat observation from its tolist(), once the evaluator has checked it
+        # (the first keyed observation sets it): advance's lookup without the call layers
+        self._values_key: Callable[[list[Any]], tuple[Any, ...]] | None = None
 
     @property
     def final(self) -> int:
@@ -130,7 +133,14 @@ class PlanProgress:
 
     def advance(self, progress: np.ndarray | int, obs: Any) -> np.ndarray | int:
         """Progress after a step to ``obs``: never smaller than before."""
-        if (type(obs) is np.ndarray and obs.ndim == 1) or not batch_shape(obs):  # one obs
+        if type(obs) is np.ndarray and obs.ndim == 1:  # one flat observation: the step's path
+            values_key = self._values_key
+            if values_key is not None and type(progress) is int:
+                answer = self._furthest_by_key.get((values_key(obs.tolist()), progress))
+                if answer is not None:
+                    return answer
+            return self._furthest_one(obs, int(progress))
+        if not batch_shape(obs):  # one observation of another form
             return self._furthest_one(obs, int(progress))
         return np.maximum(progress, self.furthest(obs))
 
@@ -142,6 +152,8 @@ class PlanProgress:
         gives what :meth:`reached` gives (a test checks this on random observations).
         """
         if self._keyed:  # what holds is a function of the classifiers' keys: remember answers
+            if self._values_key is None:
+                self._values_key = self._evaluate.values_key(obs)
             remembered = (self._evaluate.key(obs), floor)
             answer = self._furthest_by_key.get(remembered)
             if answer is None:

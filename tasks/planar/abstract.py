@@ -341,6 +341,10 @@ class PlanarGeometryHooks:
         values = obs.tolist() if type(obs) is np.ndarray else np.asarray(obs).tolist()
         return {entity: values[s] for entity, s in self._slices}
 
+    def positions_of_values(self, values: list[float]) -> Mapping[str, list[float]]:
+        """:meth:`positions` from a flat observation's ``tolist()`` (the same floats)."""
+        return {entity: values[s] for entity, s in self._slices}
+
 
 EE = slice(0, 2)
 BOX = slice(2, 4)

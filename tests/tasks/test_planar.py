@@ -369,3 +369,18 @@ def test_reset_options_override_positions() -> None:
     np.testing.assert_allclose(obs, [0.3, 0.2, 0.6, 0.12], atol=1e-6)
     np.testing.assert_array_equal(info["goal_position"], [0.6, 0.1])
     assert info["success"] and info["distance"] == pytest.approx(0.02)
+
+
+@pytest.mark.parametrize("task", ["planshape/Reach-v1", "planshape/Push-v1"])
+def test_positions_of_values_are_the_positions(task: str) -> None:
+    """The geometry's positions from a flat observation's tolist() (what a step function that
+    keys the classifiers from the same list uses) are its positions, float for float."""
+    env = gymnasium.make(
+        task, reward="shaped", potential="h-star-geodesic", model="grid", gamma=0.9
+    )
+    geometry = env.get_wrapper_attr("geometry")
+    obs, _ = env.reset(seed=0)
+    for action in np.random.default_rng(0).uniform(-1, 1, (30, 2)):
+        assert geometry.positions_of_values(obs.tolist()) == geometry.positions(obs)
+        obs, *_ = env.step(action.astype(np.float32))
+    assert list(geometry.positions(obs)) == (["ee"] if "Reach" in task else ["ee", "box"])
