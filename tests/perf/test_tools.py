@@ -59,3 +59,21 @@ def test_shaping_overhead_on_either_clock_is_a_positive_time():
     for clock in ("thread", "wall"):
         row = perf_shaping.measure("planshape/Reach-v1", "goal-distance", "grid", 100, 1, clock)
         assert row["plain_us"] > 0 and row["shaped_us"] > 0
+
+
+def test_training_throughput_rows_carry_the_ratio_the_shaping_step_implies(monkeypatch):
+    """by_step = 1 / (1 + Δ · sparse rate), Δ the shaping step's cost (fixed here, so that no
+    timing is asserted): 1 for sparse, and the render shows it beside the timed ratio."""
+    monkeypatch.setattr(
+        perf_training, "step_overhead", lambda task, entry: 2e-6 * (entry != "sparse")
+    )
+    case = ("planshape/Reach-v1", ("PPO",), ("sparse", "plan-based/grid"))
+    sparse, shaped = rows = perf_training.measure(1024, 1, [case])
+    assert sparse["by_step"] == 1.0
+    assert shaped["by_step"] == 1 / (1 + 2e-6 * sparse["steps_per_s"])
+    assert "by step" in perf_training.render(rows)
+
+
+def test_the_shaping_step_overhead_is_read_off_the_shaping_measurement():
+    assert perf_training.step_overhead("planshape/Reach-v1", "sparse") == 0.0
+    assert math.isfinite(perf_training.step_overhead("planshape/Reach-v1", "plan-based/grid"))
