@@ -78,6 +78,23 @@ class RegionIndex:
                 for by in range(self._bucket(cy - r), self._bucket(cy + r) + 1):
                     self._buckets.setdefault((bx, by), []).append((index, cx, cy, limit, sq))
 
+    @classmethod
+    def union(cls, indexes: Sequence[RegionIndex]) -> RegionIndex:
+        """One index over the regions of ``indexes``, in their order.
+
+        Example:
+            >>> near, far = RegionIndex([(0.0, 0.0)], 0.1), RegionIndex([(1.0, 0.0)], 0.2)
+            >>> both = RegionIndex.union([near, far])
+            >>> both.containing(0.95, 0.0), both.regions[1]
+            ([1], (1.0, 0.0, 0.2, False))
+        """
+        regions = [region for index in indexes for region in index.regions]
+        return cls(
+            [(cx, cy) for cx, cy, _, _ in regions],
+            [size for _, _, size, _ in regions],
+            [square for _, _, _, square in regions],
+        )
+
     def _bucket(self, value: float) -> int:
         return math.floor(value / self._width)
 

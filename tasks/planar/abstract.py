@@ -134,6 +134,14 @@ class Places:
         return sorted({owners[r] for r in regions})
 
     @property
+    def region_index(self) -> RegionIndex:
+        """A region table's index of every region (each place's disc or square, then the
+        alternatives), of which :meth:`containing` is a function."""
+        if self.grid:
+            raise ValueError("grid places are found by rounding, not in a region index")
+        return self._finder  # type: ignore[attr-defined]
+
+    @property
     def cell(self) -> Callable[[float, float], tuple[int, int]]:
         """A grid table's ``cell(x, y)``: the lattice index of the cell containing the point,
         of which :meth:`containing` is a function (the lattice's own method, so that a
@@ -241,17 +249,7 @@ class InPlace:
         if any(table.grid for table in self.places):
             return None
         if self._membership is None:
-            regions = [
-                (centre, table.size, table.square)
-                for table in self.places
-                for centre in [
-                    *table.centres.values(),
-                    *(p for ps in table.alternatives.values() for p in ps),
-                ]
-            ]
-            index = RegionIndex(
-                [c for c, _, _ in regions], [r for _, r, _ in regions], [q for _, _, q in regions]
-            )
+            index = RegionIndex.union([table.region_index for table in self.places])
             smallest = min(table.size for table in self.places)
             self._membership = MembershipCells(index, smallest * self.MEMBERSHIP_CELL_FRACTION)
         return self._membership.containing
