@@ -42,15 +42,22 @@ from planshape.errors import BadInputError
 from planshape.harness.profiles import RunKey
 from planshape.training.hyperparams import hyperparameters
 
-__all__ = ["checked_key", "probe"]
+__all__ = ["checked_key", "checked_scale", "probe"]
 
 
 def probe(
-    key: RunKey, chunks: int = 8, eval_episodes: int = 10, tensorboard: str | None = None
+    key: RunKey,
+    chunks: int = 8,
+    eval_episodes: int = 10,
+    tensorboard: str | None = None,
+    shaping_scale: float | None = None,
 ) -> list[dict[str, Any]]:
     """Train ``key`` in ``chunks`` equal parts; one row of learner statistics after each.
     With ``tensorboard`` (a folder) the run also logs there
-    (:mod:`planshape.training.tensorboard_logs`).
+    (:mod:`planshape.training.tensorboard_logs`). ``shaping_scale`` replaces the table's
+    multiplier of φ (:data:`planshape.training.hyperparams.SHAPING_SCALE`) for this run only:
+    how budgets and scales are chosen from curves before a table changes; every row records
+    the scale it trained with.
     """
     import torch
     from stable_baselines3.common.callbacks import BaseCallback
@@ -68,6 +75,8 @@ def probe(
         )
     torch.set_num_threads(1)
     settings = hyperparameters(key.task, key.algo)
+    if shaping_scale is not None:
+        settings["shaping_scale"] = checked_scale(key, shaping_scale)
     model = make_learner(key, settings)
     eval_env = make_evaluation_env(key, settings)
     ended: list[dict[str, Any]] = []
@@ -104,6 +113,7 @@ def probe(
                 "action_std": _action_std(model),
                 "eval_success": scores["success_rate"],
                 "eval_distance": scores["final_distance"],
+                "shaping_scale": settings["shaping_scale"] if key.reward == "shaped" else None,
             }
         )
         ended.clear()
@@ -112,6 +122,25 @@ def probe(
     model.get_env().close()
     eval_env.close()
     return rows
+
+
+def checked_scale(key: RunKey, scale: float) -> float:
+    """``--shaping-scale`` checked: a finite positive number, for a shaped entry (sparse and
+    dense ignore it, so a scale there is a mistake in the command); else
+    :class:`BadInputError` (exit 2).
+
+    Example:
+        >>> checked_scale(RunKey("planshape/Reach-v1", "plan-distance/grid", "SBX-SAC", 0, 1), 10)
+        10.0
+    """
+    if key.reward != "shaped":
+        raise BadInputError(
+            f"--shaping-scale multiplies a potential; entry {key.entry!r} has none "
+            "(give a POTENTIAL/MODEL entry or drop the option)"
+        )
+    if not math.isfinite(scale) or scale <= 0:
+        raise BadInputError(f"--shaping-scale must be a finite number > 0; got {scale}")
+    return float(scale)
 
 
 def checked_key(task: str, entry: str, algo: str, seed: int, budget: int) -> RunKey:
@@ -210,6 +239,12 @@ def _probe_command(parser: argparse.ArgumentParser) -> Handler:
     parser.add_argument("--episodes", type=int, default=10, help="evaluation episodes")
     parser.add_argument("--json", action="store_true", help="print JSON rows")
     parser.add_argument(
+        "--shaping-scale",
+        type=float,
+        metavar="S",
+        help="multiply φ by S instead of the hyperparameter table's 1/(1 − γ) (shaped entries)",
+    )
+    parser.add_argument(
         "--tensorboard", metavar="DIR", help="also log the run to TensorBoard under DIR"
     )
 
@@ -217,11 +252,13 @@ def _probe_command(parser: argparse.ArgumentParser) -> Handler:
         if args.episodes < 1:
             raise BadInputError("--seed must be ≥ 0, --budget and --episodes ≥ 1")
         key = checked_key(args.task, args.entry, args.algo, args.seed, args.budget)
+        if args.shaping_scale is not None:
+            checked_scale(key, args.shaping_scale)
         if args.tensorboard:
             from planshape.training.tensorboard_logs import require_tensorboard
 
             require_tensorboard()
-        rows = probe(key, args.chunks, args.episodes, args.tensorboard)
+        rows = probe(key, args.chunks, args.episodes, args.tensorboard, args.shaping_scale)
         print(json.dumps(rows) if args.json else format_rows(rows))
         return 0
 

@@ -48,6 +48,25 @@ def test_unshaped_entries_have_no_progress(capsys):
     assert row["progress"] is None and row["plan_length"] is None
 
 
+def test_shaping_scale_replaces_the_tables_and_is_recorded(monkeypatch):
+    """The scale reaches the shaping wrappers the learner trains on (not just the row)."""
+    from planshape.harness import runner
+
+    seen: list[float] = []
+    make = runner.make_training_env
+
+    def spy(key, n_envs, gamma, seed, shaping_scale=1.0, **kwargs):
+        seen.append(shaping_scale)
+        return make(key, n_envs, gamma, seed, shaping_scale, **kwargs)
+
+    monkeypatch.setattr(runner, "make_training_env", spy)
+    key = RunKey("planshape/Reach-v0", "plan-distance/grid", "PPO", 0, 1024)
+    (row,) = probe(key, 1, 1, shaping_scale=7.5)
+    (default,) = probe(key, 1, 1)
+    assert seen == [7.5, 100.0]
+    assert row["shaping_scale"] == 7.5 and default["shaping_scale"] == 100.0
+
+
 def test_chunks_must_fit_the_budget():
     with pytest.raises(BadInputError, match="--chunks must be between 1 and the budget"):
         probe(RunKey("planshape/Reach-v0", "dense", "PPO", 0, 10), chunks=20)
@@ -64,6 +83,9 @@ def test_chunks_must_fit_the_budget():
         (["rech", "dense"], "unknown task 'rech'"),
         (["reach", "dense", "--algo", "XYZ"], "unknown algorithm 'XYZ'"),
         (["reach", "dense", "--budget", "0"], "--budget and --episodes ≥ 1"),
+        (["reach", "dense", "--shaping-scale", "10"], "entry 'dense' has none"),
+        (["reach", "plan-distance/grid", "--shaping-scale", "0"], "finite number > 0; got 0.0"),
+        (["reach", "plan-distance/grid", "--shaping-scale", "nan"], "finite number > 0"),
     ],
 )
 def test_bad_probe_input_exits_2_before_training(capsys, argv, message):
