@@ -43,6 +43,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cache
 from typing import Any
 
 from planshape.errors import UnknownIdError
@@ -267,9 +268,9 @@ class Profile:
         )
         kept = (
             [
-                f"{len(stale)} stored runs at budgets this profile no longer uses (e.g. "
-                f"runs/{stale[0][0]}.jsonl, {stale[0][1]:,} steps) stay in runs/ and are not "
-                "shown"
+                f"{len(stale)} stored runs at budgets or settings this profile no longer uses "
+                f"(e.g. runs/{stale[0][0]}.jsonl, {stale[0][1]:,} steps) stay in runs/ and are "
+                "not shown"
             ]
             if stale
             else []
@@ -289,14 +290,21 @@ class Profile:
 
     def shows(self, row: Mapping[str, Any]) -> bool:
         """Whether a stored row is one of this profile's cells as the profile is now: its task
-        and algorithm are in the profile at the row's budget. A run stored before a budget
-        changed stays in the store, but is not mixed into the cells of the new budget.
+        and algorithm are in the profile at the row's budget, and it trained with the settings
+        the hyperparameter tables give its run now (:func:`current_settings`). A run stored
+        before a budget or a table changed stays in the store, but is not mixed into the cells
+        of the new budget or settings.
 
         Example:
+            >>> from planshape.training.hyperparams import hyperparameters
             >>> smoke = PROFILES["smoke"]
-            >>> row = {"task": "planshape/Reach-v1", "algo": "PPO", "budget": 4096}
+            >>> settings = hyperparameters("planshape/Reach-v1", "PPO")
+            >>> row = {"task": "planshape/Reach-v1", "entry": "dense", "algo": "PPO",
+            ...        "budget": 4096, "hyperparameters": settings}
             >>> smoke.shows(row), smoke.shows({**row, "budget": 2048})
             (True, False)
+            >>> smoke.shows({**row, "hyperparameters": {**settings, "learning_rate": 1e-3}})
+            False
         """
         return self._current([row])[0]
 
@@ -307,7 +315,26 @@ class Profile:
     def _current(self, rows: Sequence[Mapping[str, Any]]) -> list[bool]:
         """:meth:`shows` of every row, with the budget table built once."""
         budgets = self.budgets()
-        return [budgets.get((r["task"], r["algo"])) == int(r["budget"]) for r in rows]
+        return [
+            budgets.get((r["task"], r["algo"])) == int(r["budget"])
+            and r["hyperparameters"] == current_settings(r["task"], r["algo"], r["entry"])
+            for r in rows
+        ]
+
+
+@cache
+def current_settings(task: str, algo: str, entry: str) -> dict[str, Any]:
+    """The settings a run of ``entry`` by ``algo`` on ``task`` trains with now
+    (:func:`planshape.training.hyperparams.hyperparameters`, read once per process: the tables
+    are constants). Callers compare with it and must not change it.
+
+    Example:
+        >>> current_settings("planshape/Reach-v1", "PPO", "dense")["n_envs"]
+        8
+    """
+    from planshape.training.hyperparams import hyperparameters
+
+    return hyperparameters(task, algo)
 
 
 SMOKE = Profile(
