@@ -74,7 +74,7 @@ def probe(
             f"probe: --chunks must be between 1 and the budget ({key.budget}); got {chunks}"
         )
     torch.set_num_threads(1)
-    settings = hyperparameters(key.task, key.algo)
+    settings = hyperparameters(key.task, key.algo, key.entry)
     if shaping_scale is not None:
         settings["shaping_scale"] = checked_scale(key, shaping_scale)
     model = make_learner(key, settings)

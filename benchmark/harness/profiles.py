@@ -334,7 +334,7 @@ def current_settings(task: str, algo: str, entry: str) -> dict[str, Any]:
     """
     from planshape.training.hyperparams import hyperparameters
 
-    return hyperparameters(task, algo)
+    return hyperparameters(task, algo, entry)
 
 
 SMOKE = Profile(

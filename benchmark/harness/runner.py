@@ -132,7 +132,7 @@ class RunSpec:
     ) -> RunSpec:
         """The spec of ``key`` with its task's and algorithm's hyperparameters (``eval_protocol``
         1 only to find runs stored with it: this code evaluates with protocol 2)."""
-        settings = hyperparameters(key.task, key.algo)
+        settings = hyperparameters(key.task, key.algo, key.entry)
         return cls(key, profile, eval_every, eval_episodes, settings, invariance, eval_protocol)
 
     @property

@@ -65,7 +65,7 @@ def steps_per_second(
     import torch
 
     torch.set_num_threads(1)
-    settings = hyperparameters(task, algo)
+    settings = hyperparameters(task, algo, entry)
     if "learning_starts" in settings:  # time gradient steps, not the random warm-up
         settings["learning_starts"] = 0
     model = make_learner(RunKey(task, entry, algo, 0, steps), settings)

@@ -58,6 +58,9 @@ GAMMA = 0.99
 #: the multiplier of every potential in training: 1/(1 − γ), see the module docstring; rounded,
 #: because in floating point 1/(1 − 0.99) is 99.99999999999991 and the runs record 100.0
 SHAPING_SCALE = round(1.0 / (1.0 - GAMMA), 6)
+#: what a sparse or dense run records as its ``shaping_scale`` (it has no potential to scale):
+#: the rule's value, which every run recorded before tables had scales of their own
+UNSHAPED_SCALE = SHAPING_SCALE
 
 
 def setting(doc: str, default: Any = None) -> Any:
@@ -210,18 +213,31 @@ def family(task_id: str) -> str:
     return task_spec(task_id).family
 
 
-def hyperparameters(task_id: str, algo: str) -> dict[str, Any]:
+def hyperparameters(task_id: str, algo: str, entry: str | None = None) -> dict[str, Any]:
     """A fresh copy of the settings of ``algo`` (a learner id, e.g. ``SBX-SAC``, whose table is
-    ``SAC``'s) on ``task_id``."""
+    ``SAC``'s) on ``task_id``, for a run of ``entry`` (``None``: a shaped entry).
+
+    A ``sparse`` or ``dense`` run ignores ``shaping_scale``, so it records
+    :data:`UNSHAPED_SCALE` whatever its table's scale is: a sparse run is the same run, with
+    the same id, whichever scale the table gives the shaped entries beside it.
+
+    Example:
+        >>> hyperparameters("planshape/Reach-v1", "SBX-SAC", "dense")["shaping_scale"]
+        100.0
+    """
     from planshape.training.learners import learner
 
     table = learner(algo).table
     if (task_id, table) in TASK_TABLE:
-        return TASK_TABLE[(task_id, table)].as_dict()
-    key = (family(task_id), table)
-    if key not in TABLE:
-        known = sorted({f for f, a in TABLE if a == algo})
-        raise UnknownIdError(
-            "task family", key[0], known, hint=f"no {algo} hyperparameters for {task_id}"
-        )
-    return TABLE[key].as_dict()
+        settings = TASK_TABLE[(task_id, table)].as_dict()
+    else:
+        key = (family(task_id), table)
+        if key not in TABLE:
+            known = sorted({f for f, a in TABLE if a == algo})
+            raise UnknownIdError(
+                "task family", key[0], known, hint=f"no {algo} hyperparameters for {task_id}"
+            )
+        settings = TABLE[key].as_dict()
+    if entry in ("sparse", "dense"):
+        settings["shaping_scale"] = UNSHAPED_SCALE
+    return settings

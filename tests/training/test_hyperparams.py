@@ -55,6 +55,29 @@ def test_the_tables_give_every_stored_run_its_settings_and_its_id():
     for path, row in rows:
         profile = PROFILES[row["profile"]]
         key = RunKey(row["task"], row["entry"], row["algo"], row["seed"], row["budget"])
-        assert hyperparameters(key.task, key.algo) == row["hyperparameters"], path.name
+        assert hyperparameters(key.task, key.algo, key.entry) == row["hyperparameters"], path.name
         spec = RunSpec.create(key, profile.name, profile.eval_every, profile.eval_episodes)
         assert spec.run_id == row["run_id"] == path.stem, path.name
+
+
+def test_a_tables_shaping_scale_changes_the_shaped_runs_ids_only(monkeypatch):
+    """Sparse and dense runs ignore the scale: giving a table a scale of its own must leave
+    their ids (and so their stored runs) as they are, and give every shaped run a new one."""
+
+    def ids() -> dict[str, str]:
+        return {
+            entry: RunSpec.create(
+                RunKey("planshape/Reach-v1", entry, "SBX-SAC", 0, 100_000), "planar", 10_000, 10
+            ).run_id
+            for entry in ("sparse", "dense", "plan-distance/grid")
+        }
+
+    before = ids()
+    table = hyperparams.TABLE[("Reach", "SAC")]
+    monkeypatch.setitem(hyperparams.TABLE, ("Reach", "SAC"), table.replace(shaping_scale=10.0))
+    after = ids()
+    assert after["sparse"] == before["sparse"] and after["dense"] == before["dense"]
+    assert after["plan-distance/grid"] != before["plan-distance/grid"]
+    shaped = hyperparameters("planshape/Reach-v1", "SBX-SAC", "plan-distance/grid")
+    assert shaped["shaping_scale"] == 10.0
+    assert hyperparameters("planshape/Reach-v1", "SBX-SAC", "sparse")["shaping_scale"] == 100.0
