@@ -478,30 +478,52 @@ class HStarGeodesic(_BoundPotential):
             h, moves = self._entry(here)[1]
             if h == 0 or math.isinf(h) or not moves:  # φ does not depend on where in the cell
                 return self._along(model, (h, moves), geometry, here.obs)
-            return h, model.normalizer, tuple(moves)
+            return h, h - 1, model.normalizer, _measured(moves)
 
         of_values = getattr(geometry, "positions_of_values", None)
+        dist, inf = math.dist, math.inf
 
         def measure(remembered: Any, obs: Any, values: list[Any] | None) -> float:
             if type(remembered) is float:
                 return remembered
-            h, normalizer, moves = remembered
+            h, h_next, normalizer, groups = remembered
             if values is not None and of_values is not None:  # obs.tolist() made once
                 positions = of_values(values)
             else:
                 positions = geometry.positions(obs)
-            left = math.inf
-            for entity, a, b, length in moves:
+            left = inf
+            for entity, starts, ends in groups:
                 p = positions[entity]
-                via_a = h + math.dist(p, a) / length
-                via_b = h - 1 + math.dist(p, b) / length
-                if via_a < left:
-                    left = via_a
-                if via_b < left:
-                    left = via_b
+                for a, length in starts:
+                    via = h + dist(p, a) / length
+                    if via < left:
+                        left = via
+                for b, length in ends:
+                    via = h_next + dist(p, b) / length  # h - 1 + …, added as _along adds
+                    if via < left:
+                        left = via
             return -left * normalizer
 
         return _per_key(self, ctx, remember, measure)
+
+
+def _measured(moves: list[tuple[str, Any, Any, float]]) -> tuple[Any, ...]:
+    """The optimal moves of a cell as :class:`HStarGeodesic`'s step measures them: per entity,
+    its distinct (start, length) and its (end, length) pairs. The moves of one entity leave from
+    one place, so a step measures the way back to it once, not once per move; the least of
+    the terms is the same float in any order and without repeats.
+
+    Example:
+        >>> _measured([("ee", [0, 0], [0, 1], 1.0), ("ee", [0, 0], [1, 0], 1.0)])
+        (('ee', (([0, 0], 1.0),), (([0, 1], 1.0), ([1, 0], 1.0))),)
+    """
+    starts: dict[str, list[tuple[Any, float]]] = {}
+    ends: dict[str, list[tuple[Any, float]]] = {}
+    for entity, a, b, length in moves:
+        if (a, length) not in starts.setdefault(entity, []):
+            starts[entity].append((a, length))
+        ends.setdefault(entity, []).append((b, length))
+    return tuple((e, tuple(starts[e]), tuple(ends[e])) for e in starts)
 
 
 def _per_key(
