@@ -141,33 +141,24 @@ def test_a_run_keeps_its_identity_through_training():
     assert spec.run_id == before == rows[0]["run_id"]
 
 
-def test_runs_at_a_budget_the_profile_no_longer_uses_are_kept_but_not_shown(smoke_out, tmp_path):
-    """After a budget changes, the runs stored at the old one stay in the store and out of the
-    cells: the leaderboard names them in its caveats instead of mixing two budgets."""
-    import shutil
-
-    out = tmp_path / "board"
-    shutil.copytree(smoke_out / "runs", out / "runs")
-    source = next(p for p in sorted((out / "runs").glob("*.jsonl")) if '"sparse"' in p.read_text())
-    rows = [json.loads(line) for line in source.read_text().splitlines()]
-    for row in rows:
-        row["budget"], row["run_id"], row["seed"] = 2048, "0000old0budget00", 7
-    (out / "runs" / "0000old0budget00.jsonl").write_text(
-        "".join(json.dumps(row) + "\n" for row in rows)
-    )
-    assert main(["leaderboard", "--out", str(out), "--json"]) == 0
-    board = (out / "LEADERBOARD.md").read_text()
-    assert "1 stored runs at budgets or settings this profile no longer uses" in board
-    assert "runs/0000old0budget00.jsonl, 2,048 steps" in board
-    summary = json.loads((out / "summary.json").read_text())
-    sparse = [c for c in summary["per_task"] if c["entry"] == "sparse"]
-    assert [(c["n_seeds"], c["budget"]) for c in sparse] == [(1, 4096)]
+def _older_budget(row: dict) -> None:
+    row["budget"] = 2048
 
 
-def test_runs_with_settings_the_tables_no_longer_give_are_kept_but_not_shown(smoke_out, tmp_path):
-    """After a hyperparameter table changes (here: the shaping scale of a shaped entry), the
-    runs trained with the old settings stay in the store and out of the cells, at the same
-    budget: a cell never mixes two settings."""
+def _older_scale(row: dict) -> None:
+    row["hyperparameters"]["shaping_scale"] = 10.0
+
+
+@pytest.mark.parametrize(
+    ("entry", "change", "named"),
+    [("sparse", _older_budget, "2,048 steps"), ("plan-based/multi", _older_scale, "4,096 steps")],
+)
+def test_runs_at_a_budget_or_settings_the_profile_no_longer_uses_are_kept_but_not_shown(
+    smoke_out, tmp_path, entry, change, named
+):
+    """After a budget or a hyperparameter table changes (here: a shaped entry's shaping
+    scale), the runs stored with the old one stay in the store and out of the cells: the
+    leaderboard names them in its caveats instead of mixing two budgets or two settings."""
     import shutil
 
     out = tmp_path / "board"
@@ -176,20 +167,20 @@ def test_runs_with_settings_the_tables_no_longer_give_are_kept_but_not_shown(smo
         [json.loads(line) for line in p.read_text().splitlines()]
         for p in sorted((out / "runs").glob("*.jsonl"))
     ]
-    rows = next(rows for rows in stored if rows[0]["potential"])
+    rows = next(rows for rows in stored if rows[0]["entry"] == entry)
     for row in rows:
-        row["hyperparameters"]["shaping_scale"] = 10.0
-        row["run_id"], row["seed"] = "0000old0scale000", 7
-    (out / "runs" / "0000old0scale000.jsonl").write_text(
+        change(row)
+        row["run_id"], row["seed"] = "0000older0run000", 7
+    (out / "runs" / "0000older0run000.jsonl").write_text(
         "".join(json.dumps(row) + "\n" for row in rows)
     )
     assert main(["leaderboard", "--out", str(out), "--json"]) == 0
     board = (out / "LEADERBOARD.md").read_text()
     assert "1 stored runs at budgets or settings this profile no longer uses" in board
-    assert "runs/0000old0scale000.jsonl, 4,096 steps" in board
+    assert f"runs/0000older0run000.jsonl, {named}" in board
     summary = json.loads((out / "summary.json").read_text())
-    shaped = [c for c in summary["per_task"] if c["entry"] == rows[0]["entry"]]
-    assert [c["n_seeds"] for c in shaped] == [1]
+    cells = [c for c in summary["per_task"] if c["entry"] == entry]
+    assert [(c["n_seeds"], c["budget"]) for c in cells] == [(1, 4096)]
 
 
 def test_a_profile_with_runs_missing_says_it_is_partial(smoke_out, tmp_path):
