@@ -234,7 +234,10 @@ def check_store(out: Path, profile: Profile, extra_potentials: Sequence[str] = (
 
     A run stored by another profile whose id is one of this profile's runs is the same run
     (ids hash what determines the numbers, not the profile's name), so it is accepted: a
-    larger profile's folder can start from a smaller one's runs (copy ``runs/*.jsonl``).
+    larger profile's folder can start from a smaller one's runs (copy ``runs/*.jsonl``). So is
+    one that neither its own profile nor this one shows any more (its budget or settings were
+    replaced, :meth:`Profile.shows`): such a run was copied in when it was a run of both, and
+    stays stored without entering a cell.
 
     Example:
         >>> import tempfile
@@ -260,8 +263,12 @@ def check_store(out: Path, profile: Profile, extra_potentials: Sequence[str] = (
     for path in stored:
         first = store.read(path)[0]
         key = (first["profile"], int(first.get("eval_protocol", 1)))
-        if key[0] != profile.name and key[1] == EVAL_PROTOCOL and path.stem in own:
-            continue  # the same run, stored by another profile
+        if (
+            key[0] != profile.name
+            and key[1] == EVAL_PROTOCOL
+            and (path.stem in own or _retired(first, profile))
+        ):
+            continue  # the same run, stored by another profile, or one no cell shows
         found.setdefault(key, path.name)
     foreign = {k: v for k, v in found.items() if k != (profile.name, EVAL_PROTOCOL)}
     if foreign:
@@ -272,6 +279,13 @@ def check_store(out: Path, profile: Profile, extra_potentials: Sequence[str] = (
             "would mix into them. Choose another --out, or leave --out out to use the profile's "
             "own folder"
         )
+
+
+def _retired(row: dict, profile: Profile) -> bool:
+    """Whether a stored run of another profile is shown neither by that profile nor by
+    ``profile`` (an unknown profile's runs are not retired: nothing says what it shows)."""
+    own = PROFILES.get(row["profile"])
+    return own is not None and not own.shows(row) and not profile.shows(row)
 
 
 def _check_submission(reference: str) -> None:
