@@ -26,7 +26,8 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   (``planshape probe TASK ENTRY --algo SBX-SAC --shaping-scale S``, 5 seeds, deterministic
   evaluation every 10,000 steps), against the stored runs at 100: on reach (100,000 steps)
   plan-distance/grid solves 4/5 seeds at 10 (final 0.007-0.032 m; seed 1 0.250 m) and 1/5 at
-  100, dense 4/5; h-star-geodesic/grid 1/5 against 0/5; plan-based/grid 0/5 at both (a step
+  100, dense 4/5 (at 30 also 4/5, seeds 0-3, first solved at 20,000-90,000 steps; at 1 seed 0
+  solves it at 90,000: 10 sits inside a wide window that 100 is outside of); h-star-geodesic/grid 1/5 against 0/5; plan-based/grid 0/5 at both (a step
   potential, flat inside each cell). On push (150,000) plan-distance/grid 3/5 against 1/5
   (dense 4/5). On maze-reach plan-distance/grid holds the goal on 4/5 seeds from 40,000 steps
   to 100,000 at 10, where at 100 three of its four seeds lost it by 40,000. Nowhere was 10
