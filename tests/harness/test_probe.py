@@ -94,3 +94,24 @@ def test_bad_probe_input_exits_2_before_training(capsys, argv, message):
     assert main(["probe", *argv]) == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    ("key", "eval_every"),
+    [
+        (RunKey("planshape/Reach-v1", "plan-distance/grid", "PPO", 1, 2048), 1024),
+        (RunKey("planshape/Reach-v1", "plan-distance/grid", "SBX-SAC", 1, 1600), 800),
+    ],
+)
+def test_the_probe_trains_the_benchmarks_run(key, eval_every):
+    """A curve the probe prints is the curve the benchmark stores for the same run: its chunks
+    end where the benchmark evaluates, and the numbers there are the same floats (budgets and
+    shaping scales are chosen from probe curves, so they must describe the stored runs)."""
+    from planshape.harness.runner import RunSpec, execute
+
+    rows = execute(RunSpec.create(key, "test", eval_every, 1))
+    stored = {row["step"]: (row["success_rate"], row["final_distance"]) for row in rows}
+    probed = probe(key, chunks=key.budget // eval_every, eval_episodes=1)
+    assert [row["step"] for row in probed] == [eval_every * (i + 1) for i in range(len(probed))]
+    for row in probed:
+        assert stored[row["step"]] == (row["eval_success"], row["eval_distance"]), row["step"]
