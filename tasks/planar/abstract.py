@@ -315,7 +315,7 @@ class PlanarGeometryHooks:
         #: entity -> (predicate that places it, argument index of the place, obs slice)
         self.entities = dict(entities)
         self._located: dict[AbstractState, dict[str, np.ndarray]] = {}
-        self._slices = [(entity, s) for entity, (_, _, s) in self.entities.items()]
+        self._read = _position_reader([(e, s) for e, (_, _, s) in self.entities.items()])
 
     def _centre(self, name: str) -> np.ndarray:
         for table in self.places:
@@ -336,12 +336,31 @@ class PlanarGeometryHooks:
     def positions(self, obs: np.ndarray) -> Mapping[str, list[float]]:
         """Each entity's coordinates in one observation, as plain floats (the distance
         potentials measure them with ``math``, several times faster than on numpy 2-vectors)."""
-        values = obs.tolist() if type(obs) is np.ndarray else np.asarray(obs).tolist()
-        return {entity: values[s] for entity, s in self._slices}
+        return self._read(obs.tolist() if type(obs) is np.ndarray else np.asarray(obs).tolist())
 
     def positions_of_values(self, values: list[float]) -> Mapping[str, list[float]]:
         """:meth:`positions` from a flat observation's ``tolist()`` (the same floats)."""
-        return {entity: values[s] for entity, s in self._slices}
+        return self._read(values)
+
+
+def _position_reader(
+    slices: Sequence[tuple[str, slice]],
+) -> Callable[[list[float]], dict[str, list[float]]]:
+    """values -> {entity: its coordinates}, in ``slices``' order. For the planar tasks' one or
+    two entities a dict display, half the time of a comprehension (0.10 against 0.21 µs with
+    one entity on Python 3.11), which every shaped step of a distance potential pays.
+
+    Example:
+        >>> _position_reader([("ee", slice(0, 2)), ("box", slice(2, 4))])([1.0, 2.0, 3.0, 4.0])
+        {'ee': [1.0, 2.0], 'box': [3.0, 4.0]}
+    """
+    if len(slices) == 1:
+        ((a, in_a),) = slices
+        return lambda values: {a: values[in_a]}
+    if len(slices) == 2:
+        (a, in_a), (b, in_b) = slices
+        return lambda values: {a: values[in_a], b: values[in_b]}
+    return lambda values: {entity: values[s] for entity, s in slices}
 
 
 EE = slice(0, 2)
