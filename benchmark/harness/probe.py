@@ -252,8 +252,6 @@ def _probe_command(parser: argparse.ArgumentParser) -> Handler:
         if args.episodes < 1:
             raise BadInputError("--seed must be ≥ 0, --budget and --episodes ≥ 1")
         key = checked_key(args.task, args.entry, args.algo, args.seed, args.budget)
-        if args.shaping_scale is not None:
-            checked_scale(key, args.shaping_scale)
         if args.tensorboard:
             from planshape.training.tensorboard_logs import require_tensorboard
 

@@ -48,6 +48,7 @@ from typing import Any
 
 from planshape.errors import UnknownIdError
 from planshape.shaping.registration import task_spec
+from planshape.training.hyperparams import SAC_SHAPING_SCALE, SHAPING_SCALE
 
 #: the folder under which every profile's results are stored
 RESULTS_ROOT = "leaderboard"
@@ -469,10 +470,11 @@ _V0_SHARED_CAVEATS = (
     _RESCALED_CAVEAT,
 )
 _SHARED_CAVEATS = (
-    "every potential's φ is multiplied by shaping_scale: 1/(1 − γ) = 100 for PPO, 10 for SAC "
-    "(planshape.training.hyperparams: at 100, SAC's planning-derived potentials trailed "
-    "sparse on reach and lost maze-reach after 30,000 steps; at 10 plan-distance/grid solves "
-    "reach on 4 of 5 seeds, as dense does); the source paper tuned a multiplier per potential "
+    f"every potential's φ is multiplied by shaping_scale: 1/(1 − γ) = {SHAPING_SCALE:g} for "
+    f"PPO, {SAC_SHAPING_SCALE:g} for SAC (planshape.training.hyperparams: at {SHAPING_SCALE:g}, "
+    "SAC's planning-derived potentials trailed sparse on reach and lost maze-reach after "
+    f"30,000 steps; at {SAC_SHAPING_SCALE:g} plan-distance/grid solves reach on 4 of 5 seeds, as "
+    "dense does); the source paper tuned a multiplier per potential "
     "by hand, this benchmark applies one per learner to every entry, and sparse and dense "
     "runs have none",
     _RESCALED_CAVEAT,
@@ -559,9 +561,10 @@ PLANAR_PROFILE = Profile(
         "PPO on push: the dense reward solves it on 3 of 5 seeds at this budget (327,680 "
         "steps), short of the rule's 0.8, so PPO's push cells say little about shaping",
         "SAC on maze-reach trains 50,000 steps: plan-distance/grid's learning curves (SAC's "
-        "shaping scale, 10) solve it on 4 of 5 seeds from 40,000 steps on and keep it to "
-        "100,000 (planshape.harness.profiles); the runs at the previous budget, 30,000 (chosen "
-        "at scale 100, where it was a transient), stay stored",
+        f"shaping scale, {SAC_SHAPING_SCALE:g}) solve it on 4 of 5 seeds from 40,000 steps on "
+        "and keep it to 100,000 (planshape.harness.profiles); the runs at the previous "
+        f"budget, 30,000 (chosen at scale {SHAPING_SCALE:g}, where it was a transient), stay "
+        "stored",
         *_SHARED_CAVEATS,
         *_V1_CAVEATS,
     ),
