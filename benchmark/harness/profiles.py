@@ -525,11 +525,11 @@ DEFAULT = Profile(
     eval_episodes=10,
     caveats=(
         "what fits in an hour on 2 CPU cores: PPO on reach and maze-reach, SAC on push (PPO's "
-        "dense reward needs 819,200 steps on push, where it solves 4 of 5 seeds: about 2 "
-        "hours of CPU for a push cell set, so PPO's push cells are the planar profile's); the "
-        "paper's other "
-        "potentials and models, plan-path, SAC on reach and maze-reach and PPO on push are in "
-        "the planar profile (the single- and multi-model and plan-path runs this profile "
+        f"dense reward needs {_PPO_STEPS['Push']:,} steps on push, where it solves 4 of 5 "
+        "seeds: 25 more runs of about 2.4 minutes each would take this profile past its hour, "
+        "so PPO's push cells are the planar profile's); the paper's other potentials and "
+        "models, plan-path, SAC on reach and maze-reach and PPO on push are in the planar "
+        "profile (the single- and multi-model and plan-path runs this profile "
         "carried until it was measured at 68 minutes from an empty folder are there)",
         "SAC on push trains 150,000 steps: dense's learning curves (seeds 0-4) succeed on 4 of "
         "5 seeds from 120,000 steps on (seed 4 never moves the cylinder), so 0.8 is the most "
@@ -563,10 +563,10 @@ PLANAR_PROFILE = Profile(
     eval_every=10_000,
     eval_episodes=10,
     caveats=(
-        "PPO on push trains 819,200 steps: dense's learning curves (seeds 0-4) succeed on 4 "
-        "of 5 seeds from 655,360 steps on (seed 2 never moves the cylinder) and on 3 of 5 "
-        "before; the runs at the previous budget, 327,680 (dense 3/5, short of the rule's "
-        "0.8), stay stored",
+        f"PPO on push trains {_PPO_STEPS['Push']:,} steps: dense's learning curves (seeds "
+        "0-4) succeed on 4 of 5 seeds from 655,360 steps on (seed 2 never moves the "
+        "cylinder) and on 3 of 5 before; the runs at the previous budget, 327,680 (dense 3/5, "
+        "short of the rule's 0.8), stay stored",
         "SAC on maze-reach trains 50,000 steps: plan-distance/grid's learning curves (SAC's "
         f"shaping scale, {SAC_SHAPING_SCALE:g}) solve it on 4 of 5 seeds from 40,000 steps on "
         "and keep it to 100,000 (planshape.harness.profiles); the runs at the previous "
