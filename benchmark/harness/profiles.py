@@ -650,6 +650,7 @@ FULL = Profile(
     ),
     eval_every=50_000,
     eval_episodes=20,
+    caveats=PAPER.caveats,
 )
 
 #: PPO's rollout on MetaWorld is 8 environments × 512 steps; 25 rollouts

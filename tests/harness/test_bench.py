@@ -229,3 +229,24 @@ def test_a_run_another_benchmark_is_training_is_left_to_it(tmp_path, capfd):
     lines = [line for line in capfd.readouterr().out.splitlines() if line.startswith("[")]
     assert lines[0].startswith("[1/1] done") and store.has(run_id)
     assert list((out / ".claims").iterdir()) == []  # no claim is left behind
+
+
+@pytest.mark.parametrize(
+    ("task", "algo", "reason"),
+    [
+        ("planshape/Push-v1", "PPO", "PPO on push trains {budget:,} steps"),
+        ("planshape/MazeReach-v1", "SBX-SAC", "SAC on maze-reach trains {budget:,} steps"),
+    ],
+)
+def test_every_profile_at_a_replaced_planar_budget_says_why(task, algo, reason):
+    """A planar budget that replaced an earlier one leaves the earlier runs stored; every
+    profile that trains at it (planar, and paper, which reuses its runs) states the learning
+    curves that chose it, so a reader of either leaderboard sees why the cell has that budget."""
+    from planshape.harness.profiles import PROFILES
+
+    budget = PROFILES["planar"].budgets()[(task, algo)]
+    at_it = [p for p in PROFILES.values() if p.budgets().get((task, algo)) == budget]
+    assert {"planar", "paper"} <= {p.name for p in at_it}
+    stated = reason.format(budget=budget)
+    for profile in at_it:
+        assert any(c.startswith(stated) for c in profile.caveats), profile.name
