@@ -23,20 +23,23 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   source paper tuned one multiplier per potential by hand; one scale per learner for every
   entry, submissions included, keeps the comparison fair. Sparse and dense runs ignore it
   (and record :data:`UNSHAPED_SCALE`).
-* SAC on the planar tasks: :data:`SAC_SHAPING_SCALE` = 10, from SBX-SAC learning curves (``planshape
-  probe TASK ENTRY --algo SBX-SAC --shaping-scale S``, 5 seeds, deterministic evaluation every
-  10,000 steps), against the stored runs at 100: on reach (100,000 steps) plan-distance/grid solves
-  4/5 seeds at 10 (final 0.007-0.032 m; seed 1 0.250 m) and 1/5 at 100, dense 4/5 (at 30 also 4/5,
-  seeds 0-3, first solved at 20,000-90,000 steps; at 1 seed 0 solves it at 90,000: 10 sits inside a
-  wide window that 100 is outside of); h-star-geodesic/grid 1/5 against 0/5; plan-based/grid 0/5 at
-  both (a step potential, flat inside each cell). On push (150,000) plan-distance/grid 3/5 against
-  1/5 (dense 4/5); at 30 push is worse, 1/4 (seeds 0-3: only seed 1 solves it, from 90,000; seeds 0,
-  2 and 4 solve it at 10), so 10, not 30. On maze-reach plan-distance/grid holds the goal on 4/5
-  seeds from 40,000 steps to 100,000 at 10, where at 100 three of its four seeds lost it by 40,000.
-  Nowhere was 10 worse. (SAC tunes its entropy against Q-values of the shaped return, so the
-  reward's scale matters to it; why 100 hurts here is not measured.) PPO keeps 100 (at 1 it solved
-  nothing). The v0 tasks keep 100, with which their stored runs trained; MetaWorld and
-  gymnasium-robotics too (not measured there).
+* SAC on the planar tasks: :data:`SAC_SHAPING_SCALE` = 10, from SBX-SAC learning curves
+  (``planshape probe TASK ENTRY --algo SBX-SAC --shaping-scale S``, 5 seeds, deterministic
+  evaluation every 10,000 steps), against the stored runs at 100: on reach (100,000 steps)
+  plan-distance/grid solves 4/5 seeds at 10 (final 0.007-0.032 m; seed 1 0.250 m) and 1/5 at 100,
+  dense 4/5 (at 30 also 4/5, seeds 0-3, first solved at 20,000-90,000 steps; at 1 seed 0 solves it
+  at 90,000: 10 sits inside a wide window that 100 is outside of); h-star-geodesic/grid 1/5 against
+  0/5; plan-based/grid 0/5 at both (a step potential, flat inside each cell). On push (150,000)
+  plan-distance/grid 3/5 against 1/5 (dense 4/5); at 30 push is worse, 1/4 (seeds 0-3: only seed 1
+  solves it, from 90,000; seeds 0, 2 and 4 solve it at 10), so 10, not 30. On maze-reach
+  plan-distance/grid holds the goal on 4/5 seeds from 40,000 steps to 100,000 at 10, where at 100
+  three of its four seeds lost it by 40,000. Nowhere was 10 worse. (SAC tunes its entropy against
+  Q-values of the shaped return, so the reward's scale matters to it; why 100 hurts here is not
+  measured.) PPO keeps 100 (at 1 it solved nothing; on push at 10, ``planshape probe push ENTRY
+  --shaping-scale 10 --budget 819200``, 5 seeds, it solves what it solves at 100:
+  plan-distance/grid 0/5, its plan progress stuck at step 2 of 11 on every seed, short of the
+  pushing position, plan-path/grid 0/5, time-varying/grid 2/5). The v0 tasks keep 100, with which
+  their stored runs trained; MetaWorld and gymnasium-robotics too (not measured there).
 * ``rescale_observations`` (planar tables): the learner sees the observation mapped from its
   Box bounds onto [-1, 1] (:func:`planshape.harness.runner.learner_view`; the shaping still reads
   metres). The raw coordinates span a few tenths of a metre, on which a [64, 64] tanh MLP is
