@@ -547,11 +547,11 @@ _PLANAR_BUDGET_CAVEATS = (
     "0-4) succeed on 4 of 5 seeds from 655,360 steps on (seed 2 never moves the "
     "cylinder) and on 3 of 5 before; the runs at the previous budget, 327,680 (dense 3/5, "
     "short of the rule's 0.8), stay stored",
-    "SAC on maze-reach trains 50,000 steps: plan-distance/grid's learning curves (SAC's "
-    f"shaping scale, {SAC_SHAPING_SCALE:g}) solve it on 4 of 5 seeds from 40,000 steps on "
-    "and keep it to 100,000 (planshape.harness.profiles); the runs at the previous "
-    f"budget, 30,000 (chosen at scale {SHAPING_SCALE:g}, where it was a transient), stay "
-    "stored",
+    f"SAC on maze-reach trains {_SAC_STEPS['MazeReach']:,} steps: plan-distance/grid's "
+    f"learning curves (SAC's shaping scale, {SAC_SHAPING_SCALE:g}) solve it on 4 of 5 seeds "
+    "from 40,000 steps on and keep it to 100,000 (planshape.harness.profiles); the runs at "
+    f"the previous budget, 30,000 (chosen at scale {SHAPING_SCALE:g}, where it was a "
+    "transient), stay stored",
 )
 
 PLANAR_PROFILE = Profile(
@@ -772,7 +772,8 @@ INSTANCES = Profile(
         "of the held-out instances up to 409,600 steps (3 seeds), so a PPO reach cell compares "
         "entries that all fail; SBX-SAC on the reach distribution trains 300,000 steps, where "
         "its dense reward solved 0.66 of the held-out instances (one seed's curve; 0.00 up to "
-        "90,000); SBX-SAC on the maze distribution keeps the fixed task's 50,000, where "
+        "90,000); SBX-SAC on the maze distribution keeps the fixed task's "
+        f"{_SAC_STEPS['MazeReach']:,}, where "
         "plan-distance/grid's curves solve 0.94-1.00 of the held-out instances (seeds 0-1) and "
         "dense's 0.00; the push distribution is not yet measured",
         *_SHARED_CAVEATS,
