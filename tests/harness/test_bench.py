@@ -250,3 +250,31 @@ def test_every_profile_at_a_replaced_planar_budget_says_why(task, algo, reason):
     stated = reason.format(budget=budget)
     for profile in at_it:
         assert any(c.startswith(stated) for c in profile.caveats), profile.name
+
+
+def test_every_profile_that_publishes_cells_trains_five_seeds_per_cell():
+    """A committed leaderboard cell has at least 5 seeds: every profile that can still train
+    (all but the archived ones) does, except smoke, which only checks the pipeline."""
+    from planshape.harness.profiles import PROFILES
+
+    publishing = [p for p in PROFILES.values() if not p.archived and p.name != "smoke"]
+    assert {"default", "planar", "instances", "paper", "metaworld"} <= {p.name for p in publishing}
+    for profile in publishing:
+        for block in profile.blocks:
+            assert len(set(block.seeds)) >= 5, (profile.name, block.tasks)
+
+
+def test_the_metaworld_profile_evaluates_where_its_budget_probes_did():
+    """The metaworld profile's budgets come from ``planshape probe ... --chunks 10`` curves
+    evaluated every 20,000 steps; evaluating its runs at the same points makes a seed-0 run
+    repeat the curve that chose its budget, which a reader can check."""
+    from planshape.harness.profiles import METAWORLD_SAC_BUDGETS, PROFILES
+
+    profile = PROFILES["metaworld"]
+    assert METAWORLD_SAC_BUDGETS and all(
+        budget % profile.eval_every == 0 for budget in METAWORLD_SAC_BUDGETS.values()
+    )
+    keys = list(profile.runs())
+    assert {k.algo for k in keys} == {"SBX-SAC"}
+    entries = {k.entry for k in keys}
+    assert entries == {"sparse", "dense", "plan-based/stages", "plan-distance/stages"}
