@@ -656,13 +656,17 @@ FULL = Profile(
 #: PPO's rollout on MetaWorld is 8 environments × 512 steps; 25 rollouts
 _METAWORLD_BUDGET = 25 * 8 * 512
 
+_RAW_OBSERVATIONS_CAVEAT = (
+    "observations are MetaWorld's raw ones (no finite bounds to rescale from)"
+)
+
 _METAWORLD_CAVEATS = (
     "a reduction of the full profile's MetaWorld block (500k steps × 5 seeds × PPO and SAC "
     "× 5 entries) to what 2 CPU cores train in about 80 minutes (2.64 h of runs): PPO "
     "trains MetaWorld at about 1,300 steps/s on one core and SAC ([256, 256], one gradient "
     "step per step) at about 50, so the full block would take days; 102k steps are 25 PPO "
     "updates, far below the millions MetaWorld tasks usually need",
-    "observations are MetaWorld's raw ones (no finite bounds to rescale from)",
+    _RAW_OBSERVATIONS_CAVEAT,
 )
 
 
@@ -729,14 +733,14 @@ METAWORLD_PROFILE = Profile(
     eval_episodes=10,
     caveats=(
         "budgets per task from SBX-SAC learning curves of the dense reward (planshape.harness."
-        "profiles): each is where dense's deterministic success reached 0.8 on seed 0",
+        "profiles): at each, dense's deterministic success on seed 0 has reached 0.8",
         "each evaluation point runs 10 deterministic episodes from starts drawn from fixed "
         "seeds; MetaWorld episodes are 500 steps and never terminate",
         f"every potential's φ is multiplied by shaping_scale = 1/(1 − γ) = {SHAPING_SCALE:g}, "
         f"not SAC's planar {SAC_SHAPING_SCALE:g}: on reach-v4 plan-distance/stages did no "
         f"worse at {SHAPING_SCALE:g} (one seed; planshape.training.hyperparams); sparse and "
         "dense runs have none",
-        "observations are MetaWorld's raw ones (no finite bounds to rescale from)",
+        _RAW_OBSERVATIONS_CAVEAT,
     ),
 )
 METAWORLD_V0_PROFILE = _metaworld(

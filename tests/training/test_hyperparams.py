@@ -97,7 +97,7 @@ def test_a_tables_shaping_scale_changes_the_shaped_runs_ids_only(monkeypatch):
     assert hyperparameters("planshape/Reach-v1", "SBX-SAC", "sparse")["shaping_scale"] == 100.0
 
 
-def test_sac_scales_phi_by_its_own_scale_and_ppo_by_the_rule():
+def test_sac_on_the_planar_tasks_scales_phi_by_its_own_scale_and_ppo_by_the_rule():
     scale = lambda task, algo: hyperparameters(task, algo, "plan-distance/grid")["shaping_scale"]  # noqa: E731
     for task in ("planshape/Reach-v1", "planshape/Push-v1", "planshape/MazeReachRandomized-v1"):
         assert scale(task, "SBX-SAC") == scale(task, "SAC") == scale(task, "SAC-default") == 10.0
