@@ -135,6 +135,15 @@ def run_bench(args: argparse.Namespace) -> int:
             f"--tasks/--seeds select no run of profile {profile.name!r}; `planshape bench "
             f"--profile {profile.name} --dry-run` lists its runs"
         )
+    if args.k and not any(
+        selected_by(args.k, key)
+        for key in profile.runs(tasks=tasks, seeds=seeds, extra_potentials=args.potential)
+    ):
+        raise BadInputError(
+            f"the selection matches no run: -k {args.k!r} selects none of profile "
+            f"{profile.name!r}'s runs (with the --tasks and --seeds given); `planshape bench "
+            f"--profile {profile.name} --dry-run` lists them with their names"
+        )
     if args.executor != "ray" and args.address:
         raise BadInputError("--address applies only with --executor ray")
     if args.tensorboard:

@@ -104,6 +104,10 @@ def test_a_selection_that_matches_nothing_changes_nothing(copy_of, capsys):
     ):
         assert main([*base, *extra]) == 2
         assert message in capsys.readouterr().err
+    # a dry run tells a -k that matches nothing from a selection whose runs are all stored
+    assert main([*base, "--dry-run", "-k", "no_such_run"]) == 2
+    assert "-k 'no_such_run' selects none of profile 'smoke'" in capsys.readouterr().err
+    assert main([*base, "--dry-run", "-k", "dense"]) == 0
     assert snapshot(copy_of) == before
 
 
