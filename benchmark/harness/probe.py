@@ -59,7 +59,6 @@ def probe(
     how budgets and scales are chosen from curves before a table changes; every row records
     the scale it trained with.
     """
-    import torch
     from stable_baselines3.common.callbacks import BaseCallback
 
     from planshape.harness.runner import (
@@ -73,7 +72,6 @@ def probe(
         raise BadInputError(
             f"probe: --chunks must be between 1 and the budget ({key.budget}); got {chunks}"
         )
-    torch.set_num_threads(1)
     settings = hyperparameters(key.task, key.algo, key.entry)
     if shaping_scale is not None:
         settings["shaping_scale"] = checked_scale(key, shaping_scale)

@@ -38,7 +38,6 @@ import copy
 import hashlib
 import json
 import math
-import os
 import subprocess
 import time
 from dataclasses import asdict, dataclass, field
@@ -55,7 +54,8 @@ from planshape.harness.profiles import RESULTS_ROOT, RunKey
 from planshape.results.rows import StoredRow, validate_row
 from planshape.shaping.registration import instance_set, task_spec
 from planshape.training.hyperparams import hyperparameters
-from planshape.training.learners import release_compiled
+from planshape.training.learners import learner, release_compiled
+from planshape.training.threads import fix_compute_threads
 
 PACKAGES = (
     "planshape",
@@ -210,10 +210,13 @@ def make_learner(key: RunKey, hyperparameters: dict[str, Any]) -> Any:
     ``n_envs``, ``shaping_scale`` and ``rescale_observations`` of ``hyperparameters`` configure
     the environments, the rest the algorithm. The settings are deep-copied first:
     stable-baselines3 writes into ``policy_kwargs``, and a run's settings are part of its
-    identity.
+    identity. The process's compute threads are fixed first
+    (:func:`planshape.training.threads.fix_compute_threads`: PyTorch on one thread, JAX on two
+    CPUs), as every stored run had them, so that the numbers do not depend on the machine.
     """
     from planshape.training.learners import make
 
+    fix_compute_threads(learner(key.algo).backend)
     settings = copy.deepcopy(hyperparameters)
     n_envs = settings.pop("n_envs")
     shaping_scale = settings.pop("shaping_scale", 1.0)
@@ -341,11 +344,8 @@ def train(
     (:mod:`planshape.training.tensorboard_logs`); with ``progress``, a bar over its training
     steps is drawn on stderr when that is a terminal (:mod:`planshape.training.progress`).
     Neither changes any of its numbers."""
-    import torch
     from stable_baselines3.common.callbacks import BaseCallback
 
-    torch.set_num_threads(1)
-    os.environ.setdefault("OMP_NUM_THREADS", "1")
     key = spec.key
     run_id = spec.run_id
     gamma = spec.hyperparameters["gamma"]

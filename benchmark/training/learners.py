@@ -39,7 +39,9 @@ from planshape.errors import UnknownIdError
 #: the package each backend is distributed as (for provenance)
 BACKEND_PACKAGES = {"stable-baselines3": ("stable-baselines3", "torch"), "sbx": ("sbx-rl", "jax")}
 
-#: XLA on one thread, so that parallel runs do not fight over the cores (set before JAX loads)
+#: XLA flags asking for one thread (set before JAX loads). jax 0.10 still sizes its intra-op
+#: pool by the CPUs the process may use; :mod:`planshape.training.threads` fixes that number,
+#: on which SBX's numbers depend. The flags stay: every stored SBX run was made with them.
 XLA_SINGLE_THREAD = "--xla_cpu_multi_thread_eigen=false intra_op_parallelism_threads=1"
 
 
