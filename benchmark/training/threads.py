@@ -47,21 +47,19 @@ def worker_slot() -> int:
     return int(match.group(1)) if match else os.getpid()
 
 
-def fix_compute_threads(backend: str) -> int:
+def fix_compute_threads(backend: str) -> None:
     """Fix the threads of a run of ``backend`` (``"stable-baselines3"`` or ``"sbx"``) before
     it loads: PyTorch on one thread; for JAX, the process on :data:`XLA_CPU_THREADS` CPUs (it
     may widen a narrower affinity, e.g. ``taskset -c 0``, when the system allows). Call it
-    before JAX is first used in the process: XLA sizes its pool once. Returns the CPUs the
-    process may run on afterwards (fewer than :data:`XLA_CPU_THREADS` on a one-core machine,
-    whose SBX numbers then differ from the stored runs')."""
+    before JAX is first used in the process: XLA sizes its pool once. A one-core machine keeps
+    its one CPU, and its SBX numbers then differ from the stored runs'."""
     import torch
 
     torch.set_num_threads(1)
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     if backend != "sbx" or not hasattr(os, "sched_setaffinity"):
-        return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1
+        return
     current = sorted(os.sched_getaffinity(0))
     candidates = current if len(current) >= XLA_CPU_THREADS else range(os.cpu_count() or 1)
     with contextlib.suppress(OSError):  # no CPU of the set allowed: keep what the process has
         os.sched_setaffinity(0, cpus_for_xla(candidates, worker_slot()))
-    return len(os.sched_getaffinity(0))
