@@ -12,6 +12,9 @@ register_potential("distance-varying", "planshape.baselines.paper:DistanceVaryin
 
 # ---- planner heuristics and plan distance (solve maze-reach; see heuristic.py, plan_distance.py)
 register_potential("plan-distance", "planshape.baselines.plan_distance:PlanDistance")
+register_potential(
+    "plan-distance-sum", "planshape.baselines.plan_distance:PlanDistance", measure="sum"
+)
 register_potential("h-add", "planshape.baselines.heuristic:HeuristicPotential", heuristic="h-add")
 register_potential("h-ff", "planshape.baselines.heuristic:HeuristicPotential", heuristic="h-ff")
 register_potential("h-star", "planshape.baselines.heuristic:HeuristicPotential", heuristic="h-star")

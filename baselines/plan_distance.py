@@ -19,6 +19,15 @@ waypoint model (``single``, ``multi``) unit is that segment's length, so walking
 is worth one step. If the measured entity does not move in that step, unit is the longest move
 of any entity in it; if none moves, the mean move length over the plan (1 m if that is 0 too).
 
+With ``measure="sum"`` (registered as ``plan-distance-sum``) d is the sum of d_e / unit_e over
+every entity e of Ŝ[j] farther than ``tolerance`` from its place, not the first one's alone.
+At tolerance 0 an entity is never exactly in its place, so ``plan-distance`` measures the first
+entity of Ŝ[j] always: where a plan step keeps the hand in place and moves an object (MetaWorld's
+stage models keep ``hand-at`` in the last subgoal while the drawer, window or button moves, and
+the hand's place moves with the object), φ stays nearly flat while the object travels to its
+goal. ``plan-distance-sum`` measures the object too. Where a model places one entity
+(reach, maze-reach) the two are the same potential.
+
 φ(s0) ≈ −1 at the plan's start, φ = 0 once the plan is done and every entity is in place, and
 at the centre of the place of subgoal k with progress k, φ = −(n − k)/n: it rises by 1/n per
 subgoal. φ depends on (observation, max_idx) only, so the optimal policy of the augmented MDP
@@ -33,23 +42,43 @@ Example:
     ...                      geometry=geometry)
     >>> PlanDistance()(ctx)  # next subgoal b, 0.5 of a 2 m step away, 1 step after it
     -0.625
+
+    A last step that keeps the hand in place and moves a box: ``"first"`` measures the hand only
+    (0.5 m from a place it never exactly reaches), ``"sum"`` the hand and the box (1 m from its
+    goal):
+
+    >>> from planshape.tasks.displacement import DisplacementGeometry
+    >>> geometry = DisplacementGeometry(
+    ...     displacements={"hand": lambda o: o[..., 0:2], "box": lambda o: o[..., 2:4]},
+    ...     targets={"hand-at": ("hand", (0.0, 0.0)), "box-at": ("box", (3.0, 0.0))})
+    >>> subgoals = [frozenset(), frozenset({("hand-at",)}),
+    ...             frozenset({("hand-at",), ("box-at",)})]
+    >>> ctx = ShapingContext(obs=np.array([0.5, 0.0, 2.0, 0.0]), progress=1, t=0,
+    ...                      subgoals=subgoals, geometry=geometry)
+    >>> float(PlanDistance()(ctx)), float(PlanDistance(measure="sum")(ctx))
+    (-0.25, -0.75)
 """
 
 from __future__ import annotations
 
 import itertools
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
 from planshape.baselines.common import IdentityCache, point_distance
+from planshape.errors import BadInputError
 from planshape.shaping.potentials import Geometry, Potential, ShapingContext, StepPotential
 
 __all__ = ["PlanDistance", "step_targets"]
 
 #: per subgoal index j: (entity, place in Ŝ[j], unit) in the ``locate`` hook's order
 StepTargets = list[list[tuple[str, list[float], float]]]
+
+
+#: which entities of Ŝ[j] :class:`PlanDistance` measures
+Measure = Literal["first", "sum"]
 
 
 def step_targets(geometry: Geometry, subgoals: Sequence[Any]) -> StepTargets:
@@ -88,12 +117,23 @@ class PlanDistance(Potential):
         tolerance: an entity within this distance (m) of its place counts as in place, and
             the next entity in the ``locate`` order is measured.
         normalize: divide by the plan length n (φ(s0) ≈ −1); ``False`` counts plan steps.
+        measure: ``"first"``: d is the first entity of Ŝ[j] out of place's distance;
+            ``"sum"``: the sum over every entity of Ŝ[j] out of place.
     """
 
-    def __init__(self, scale: float = 1.0, tolerance: float = 0.0, normalize: bool = True):
+    def __init__(
+        self,
+        scale: float = 1.0,
+        tolerance: float = 0.0,
+        normalize: bool = True,
+        measure: Measure = "first",
+    ):
         super().__init__(scale)
+        if measure not in ("first", "sum"):
+            raise BadInputError(f"plan-distance: measure={measure!r} is not 'first' or 'sum'")
         self.tolerance = float(tolerance)
         self.normalize = normalize
+        self.measure: Measure = measure
         self._tables: IdentityCache[StepTargets] = IdentityCache()
 
     def _table(self, ctx: ShapingContext) -> StepTargets:
@@ -107,11 +147,18 @@ class PlanDistance(Potential):
             return 0.0
         j = ctx.next_index
         positions = ctx.require_geometry(self.name).positions(ctx.obs)
-        for entity, target, unit in self._table(ctx)[j]:
+        return final - j + self._steps_to(self._table(ctx)[j], positions)
+
+    def _steps_to(self, row: Sequence[tuple[str, list[float], float]], positions: Any) -> float:
+        """d/unit of the entities ``row`` measures (their sum for ``measure="sum"``)."""
+        steps = 0.0
+        for entity, target, unit in row:
             distance = point_distance(positions[entity], target)
             if distance > self.tolerance:
-                return final - j + distance / unit
-        return float(final - j)
+                steps += distance / unit
+                if self.measure == "first":
+                    break
+        return steps
 
     def potential(self, ctx: ShapingContext) -> float:
         left = self.steps_left(ctx)
@@ -124,18 +171,11 @@ class PlanDistance(Potential):
             return None
         table = self._table(ctx)
         positions = ctx.require_geometry(self.name).positions
-        tolerance, normalize = self.tolerance, self.normalize
+        steps_to, normalize = self._steps_to, self.normalize
 
         def phi(obs: Any, progress: int) -> float:
             j = min(progress + 1, final)
-            where = positions(obs)
-            for entity, target, unit in table[j]:
-                distance = point_distance(where[entity], target)
-                if distance > tolerance:
-                    left = final - j + distance / unit
-                    break
-            else:
-                left = float(final - j)
+            left = final - j + steps_to(table[j], positions(obs))
             return -left / final if normalize else -left
 
         return phi

@@ -99,3 +99,35 @@ def test_depends_on_observation_and_progress_only():
     phi = make_potential("plan-distance")
     obs = np.array([0.3, 0.1], np.float32)
     assert {phi(b.ctx(obs, 7, t)) for t in (0, 5, 500)} == {phi(b.ctx(obs, 7))}
+
+
+def test_sum_adds_every_entity_out_of_place_and_equals_plan_distance_with_one_entity():
+    """``plan-distance-sum`` adds the box's distance (in steps) to the end effector's on push's
+    grid plan, is ``plan-distance`` on reach's and maze-reach's (one entity), and its fast path
+    (``specialize``) computes what ``potential`` does."""
+    rng = np.random.default_rng(0)
+    first, summed = make_potential("plan-distance"), make_potential("plan-distance-sum")
+    for factory in ("reach_grid", "maze_reach_grid"):
+        b = bound(factory)
+        for obs in rng.uniform(-0.5, 0.5, (20, 2)).astype(np.float32):
+            for k in (0, b.plan.length // 2, b.plan.length):
+                assert summed(b.ctx(obs, k)) == first(b.ctx(obs, k))
+    b = bound("push_grid")
+    n = b.plan.length
+    fast = summed.step_function(b.ctx(np.zeros(4, np.float32)))
+    for obs in rng.uniform(-0.5, 0.5, (20, 4)).astype(np.float32):
+        for k in (0, n // 2, n - 1):
+            ctx = b.ctx(obs, k)
+            table = step_targets(b.model.geometry, b.plan.subgoals)[min(k + 1, n)]
+            where = b.model.geometry.positions(obs)
+            steps = sum(np.linalg.norm(where[e] - np.asarray(t)) / u for e, t, u in table)
+            assert summed(ctx) == pytest.approx(-(n - min(k + 1, n) + steps) / n)
+            assert fast(obs, k) == pytest.approx(summed(ctx), abs=1e-12)
+            assert summed(ctx) <= first(ctx)
+
+
+def test_an_unknown_measure_is_refused_with_the_choices():
+    from planshape.errors import BadInputError
+
+    with pytest.raises(BadInputError, match="measure='last' is not 'first' or 'sum'"):
+        PlanDistance(measure="last")

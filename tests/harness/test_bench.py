@@ -277,7 +277,16 @@ def test_the_metaworld_profile_evaluates_where_its_budget_probes_did():
     keys = list(profile.runs())
     assert {k.algo for k in keys} == {"SBX-SAC"}
     entries = {k.entry for k in keys}
-    assert entries == {"sparse", "dense", "plan-based/stages", "plan-distance/stages"}
+    assert entries == {
+        "sparse",
+        "dense",
+        "plan-based/stages",
+        "plan-distance/stages",
+        "plan-distance-sum/stages",
+    }
+    # plan-distance-sum only where the plan places an object: on reach-v4 it is plan-distance
+    summed = {k.task for k in keys if k.entry == "plan-distance-sum/stages"}
+    assert summed == set(METAWORLD_SAC_BUDGETS) - {"planshape/MetaWorld-reach-v4"}
 
 
 def test_the_metaworld_profile_holds_at_least_four_distinct_tasks():

@@ -182,3 +182,75 @@ def test_geometry_locates_every_subgoal_and_drives_distance_potentials(task_id: 
     assert info["potential"] < 0
     *_, info = env.step(env.action_space.sample())
     assert math.isfinite(info["shaping"])
+
+
+def _expert_rollout(task_id: str) -> tuple[gymnasium.Env, list[np.ndarray], list[int]]:
+    """The scripted expert's seeded episode up to MetaWorld's success: observations and the
+    shaping wrapper's plan progress at each."""
+    env = make(task_id, "shaped", potential="plan-distance")
+    expert = ENV_POLICY_MAP[env_name(task_id)]()
+    obs, info = env.reset(seed=0)
+    observations, progress = [obs], [info["progress"]]
+    for _ in range(task_spec(task_id).max_episode_steps):
+        obs, *_, info = env.step(expert.get_action(obs.copy()))
+        observations.append(obs)
+        progress.append(info["progress"])
+        if info["success"]:
+            return env, observations, progress
+    raise AssertionError(f"the expert did not succeed on {task_id}")
+
+
+def _places_an_object(task_id: str) -> bool:
+    """Whether the plan's last subgoal places more than one entity (the hand and an object)."""
+    env = make(task_id, "shaped", potential="plan-distance")
+    last = env.get_wrapper_attr("progress").subgoals[-1]
+    placed = env.get_wrapper_attr("geometry").locate(last)
+    env.close()
+    return len(placed) > 1
+
+
+OBJECT_TASKS = [t for t in CURRENT if _places_an_object(t)]
+
+
+@pytest.mark.filterwarnings("ignore:Constant\\(s\\) may be too high")
+@pytest.mark.parametrize("task_id", OBJECT_TASKS, ids=str)
+def test_plan_distance_sum_measures_the_object_the_last_step_moves(task_id: str) -> None:
+    """Over the plan step into the last subgoal (the hand already in place, the expert moving
+    the object to its goal), ``plan-distance-sum`` rises by at least 0.9 of what the object's
+    own travel is worth (its distance to its place, in steps, over n), where ``plan-distance``
+    measures the hand's offset from a place that moves with the object and rises by less than
+    that (on button-press its rise is the hand's approach to the button, not the press)."""
+    from planshape.baselines.plan_distance import step_targets
+    from planshape.shaping.potentials import ShapingContext, make_potential
+
+    env, observations, progress = _expert_rollout(task_id)
+    geometry = env.get_wrapper_attr("geometry")
+    subgoals = env.get_wrapper_attr("progress").subgoals
+    n = len(subgoals) - 1
+    _hand, (obj, place, unit), *_ = step_targets(geometry, subgoals)[n]
+    in_last_step = [k for k, p in enumerate(progress) if p == n - 1]
+    first, last = observations[in_last_step[0]], observations[-1]
+
+    def phi(reference: str, obs: np.ndarray, k: int) -> float:
+        ctx = ShapingContext(obs=obs, progress=k, t=0, subgoals=subgoals, geometry=geometry)
+        return make_potential(reference)(ctx)
+
+    def object_steps(obs: np.ndarray) -> float:
+        return float(np.linalg.norm(geometry.positions(obs)[obj] - place)) / unit
+
+    travel = (object_steps(first) - object_steps(last)) / n
+    assert travel > 0.005, f"the expert moved {obj} by {travel} steps / n"
+    rise = {
+        r: phi(r, last, n) - phi(r, first, n - 1) for r in ("plan-distance-sum", "plan-distance")
+    }
+    assert rise["plan-distance-sum"] >= 0.9 * travel, (rise, travel)
+    if task_id != "planshape/MetaWorld-button-press-v3":
+        assert rise["plan-distance"] < 0.5 * travel, (rise, travel)
+
+
+def test_the_metaworld_profile_sums_distances_exactly_where_the_plan_places_an_object() -> None:
+    """The metaworld profile runs ``plan-distance-sum`` on its tasks whose plans place an object
+    and not where it equals ``plan-distance`` (one entity: reach)."""
+    from planshape.harness.profiles import METAWORLD_OBJECT_TASKS, METAWORLD_SAC_BUDGETS
+
+    assert set(METAWORLD_OBJECT_TASKS) == set(METAWORLD_SAC_BUDGETS) & set(OBJECT_TASKS)
