@@ -733,6 +733,9 @@ _METAWORLD_SAC_EVAL_EVERY = 20_000
 #: expert φ rises over that step by 17 % and 18 % of what the drawer's and window's travel is
 #: worth, and by 22 % of the button's while it is pressed in; README) and ``plan-distance-sum``
 #: measures the object too (≥ 90 %; tests/tasks/test_metaworld.py). On reach-v4 they are equal.
+#: Measured (5 seeds each, leaderboard/metaworld): on button-press the sum leaves the button
+#: untouched on 2 seeds, not 4, and ends at mean success 0.36 against plan-distance's 0.18 (dense
+#: 0.62); on drawer-close 0.80 against 0.94 (dense 0.94); curve areas equal (0.12; 0.62 vs 0.63).
 METAWORLD_OBJECT_TASKS = tuple(t for t in METAWORLD_SAC_BUDGETS if "reach" not in t)
 
 METAWORLD_PROFILE = Profile(
