@@ -25,6 +25,7 @@ from typing import Any, ClassVar, Literal
 
 from planshape.results import tables
 from planshape.results.tables import Table
+from planshape.results.verdict import budget_check
 
 __all__ = [
     "ACROSS",
@@ -119,6 +120,11 @@ HOW_TO_READ = (
     "solved from the start); it rewards learning early.",
     "**Invariance**: whether the invariance check (exact value iteration on toy MDPs) found the "
     "optimal policy preserved or violated, was not run, or does not apply (no potential).",
+    "**Budget check**: what a task's cell can decide. *decides*: every entry has 5 seeds or "
+    "more, and dense reaches 0.8 mean success while sparse does not (or dense fails and a "
+    "shaped entry solves the task, as on maze-reach); *separates little*: sparse reaches 0.8 "
+    "too; *no verdict*: fewer than 5 seeds, no dense entry, or no entry reaches 0.8, so the "
+    "budget cannot show whether shaping helps.",
 )
 
 
@@ -169,6 +175,7 @@ def _task(
     for algo, ranked in by_algo.items():
         blocks += [
             Heading(3, f"{algo} — budget {ranked[0]['budget']:,} steps"),
+            Paragraph(f"**Budget check**: {budget_check(ranked).text}"),
             tables.task_table(ranked),
         ]
     return blocks + _figures(figures, out_dir)
@@ -184,8 +191,8 @@ def build_page(
     reps: int,
 ) -> Page:
     """The leaderboard page: setup, caveats and how to read it; the across-task tables (with
-    more than one task); per task, a ranked table per algorithm and its figures (plots and
-    policy videos, in ``figures`` by task); the hyperparameters."""
+    more than one task); per task, a ranked table per algorithm under its budget check, and
+    its figures (plots and policy videos, in ``figures`` by task); the hyperparameters."""
     blocks = _setup(header, info, reps)
     by_task = tables.by_task_and_algo(summary)
     if len(by_task) > 1 and overall:
