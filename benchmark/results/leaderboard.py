@@ -6,8 +6,9 @@ provenance (:mod:`planshape.results.provenance`), draws the plots
 (:mod:`planshape.results.plots`), builds one page model (:mod:`planshape.results.page`) and
 writes it as Markdown and as a static HTML page that works offline
 (:mod:`planshape.results.render`), beside ``summary.json``: the per-task and across-task
-tables and the provenance, for machines (NaN written as ``null``). ``planshape leaderboard``
-(:mod:`planshape.harness.bench`) calls it.
+tables, each cell's budget check (:mod:`planshape.results.verdict`) and the provenance, for
+machines (NaN written as ``null``). ``planshape leaderboard`` (:mod:`planshape.harness.bench`)
+calls it.
 
 The same rows always give byte-identical files (fixed bootstrap seed, sorted keys, PNGs without
 timestamps or version strings), so re-rendering does not churn the git diff.
@@ -36,6 +37,7 @@ from planshape.results.page import build_page
 from planshape.results.plots import PLOTS_DIR, render_plots
 from planshape.results.provenance import describe_runs
 from planshape.results.tables import by_task_and_algo, caveats, interval, number, slug
+from planshape.results.verdict import budget_checks
 
 __all__ = ["render_leaderboard", "summary_table"]
 
@@ -113,6 +115,7 @@ def _summary_json(
         "header": {**header, "caveats": caveats(header, info)},
         "provenance": {k: v for k, v in info.items() if k != "caveats"},
         "per_task": summary,
+        "budget_checks": budget_checks(summary),
         "aggregate": overall,
         "statistics": {"bootstrap_reps": reps, "bootstrap_seed": seed, "confidence": 0.95},
     }
@@ -163,11 +166,10 @@ def summary_table(rows: Iterable[Mapping[str, Any]], *, reps: int = 2000, seed: 
             for i, (c, w) in enumerate(zip(cells, widths, strict=True))
         ).rstrip()
 
+    checks = {(c["task"], c["algo"]): c["text"] for c in budget_checks(summary)}
     out = [line(headings), "  ".join("-" * w for w in widths)]
-    previous = None
-    for row in table:
-        if previous is not None and row[:2] != previous:
-            out.append("")
+    for i, row in enumerate(table):
         out.append(line(row))
-        previous = row[:2]
-    return "\n".join(out)
+        if i + 1 == len(table) or table[i + 1][:2] != row[:2]:
+            out += [f"budget check: {checks[row[0], row[1]]}", ""]
+    return "\n".join(out[:-1])

@@ -30,7 +30,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any, Literal, NamedTuple
 
-__all__ = ["MIN_SEEDS", "SOLVED", "BudgetCheck", "budget_check"]
+__all__ = ["MIN_SEEDS", "SOLVED", "BudgetCheck", "budget_check", "budget_checks"]
 
 #: mean final success at which an entry counts as solving the task at the budget
 SOLVED = 0.8
@@ -133,3 +133,37 @@ shaped entry solves the task where sparse does not
         f"no verdict: no entry reaches {SOLVED} mean success ({levels}); the budget is too "
         "small to show whether shaping helps",
     )
+
+
+def budget_checks(summary: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
+    """The budget check of every (task, algorithm) cell in ``summary`` (rows of any cells, one
+    per entry), sorted by task and algorithm: ``task``, ``algo``, ``budget``, ``status``,
+    ``text``.
+
+    Example:
+        >>> rows = [
+        ...     {"task": "t", "algo": "PPO", "budget": 100, "entry": "dense", "n_seeds": 5,
+        ...      "success_mean": 0.9},
+        ...     {"task": "t", "algo": "PPO", "budget": 100, "entry": "sparse", "n_seeds": 5,
+        ...      "success_mean": 0.1},
+        ... ]
+        >>> [(c["task"], c["algo"], c["status"]) for c in budget_checks(rows)]
+        [('t', 'PPO', 'decides')]
+    """
+    cells: dict[tuple[str, str], list[Mapping[str, Any]]] = {}
+    for row in summary:
+        cells.setdefault((str(row["task"]), str(row["algo"])), []).append(row)
+    checks = []
+    for (task, algo), rows in sorted(cells.items()):
+        check = budget_check(rows)
+        budget = rows[0].get("budget")
+        checks.append(
+            {
+                "task": task,
+                "algo": algo,
+                "budget": budget,
+                "status": check.status,
+                "text": check.text,
+            }
+        )
+    return checks

@@ -99,7 +99,9 @@ def test_summary_json_is_strict_json_with_numbers(rendered):
         raise AssertionError(f"non-standard JSON constant {constant}")
 
     data = json.loads((out / "summary.json").read_text(), parse_constant=reject)
-    assert set(data) == {"aggregate", "header", "per_task", "provenance", "statistics"}
+    assert set(data) == {
+        "aggregate", "budget_checks", "header", "per_task", "provenance", "statistics"
+    }  # fmt: skip
     row = data["per_task"][0]
     assert isinstance(row["success_iqm"], float) and isinstance(row["success_iqm_low"], float)
     assert data["header"]["caveats"][0] == "synthetic rows for a unit test"
@@ -168,6 +170,22 @@ def test_summary_table(rows):
     reach_ppo = [line for line in lines if line.startswith("planshape/Reach-v0  PPO")]
     assert "plan-based/multi" in reach_ppo[0] and "sparse" in reach_ppo[-1]
     assert summary_table([]) == "no finished runs"
+
+
+def test_summary_table_and_json_give_each_cells_budget_check(rows, rendered):
+    """3 seeds per entry: no cell of the fixture can carry a verdict, and both outputs say so."""
+    lines = summary_table(rows, reps=REPS).splitlines()
+    checks = [i for i, line in enumerate(lines) if line.startswith("budget check: ")]
+    assert len(checks) == 4  # 2 tasks x 2 algorithms, each after its cell's rows
+    assert checks[-1] == len(lines) - 1
+    assert all("no verdict: some entries have 3 seeds, fewer than 5" in lines[i] for i in checks)
+    out, _ = rendered
+    data = json.loads((out / "summary.json").read_text())
+    assert [(c["task"], c["algo"], c["status"]) for c in data["budget_checks"]] == [
+        (task, algo, "no-verdict")
+        for task in ("planshape/Push-v0", "planshape/Reach-v0")
+        for algo in ("PPO", "SAC")
+    ]
 
 
 def test_policy_videos_in_the_results_folder_appear_beside_their_task(tmp_path):
