@@ -13,7 +13,8 @@ and at each of ``chunks`` checkpoints prints:
   (PPO; stable-baselines3's ``train/explained_variance``);
 * ``action_std``: the policy's mean action standard deviation (PPO);
 * ``eval_success`` / ``eval_distance``: the benchmark's evaluation (the deterministic policy on
-  the task's sparse reward).
+  the task's sparse reward); ``eval_success_any``: its episodes in which the task's success
+  flag was set at some step, not only at the end (MetaWorld's own protocol).
 
 It is how the push diagnosis in ``planshape.training.hyperparams`` was made: with a potential, PPO's
 critic explains almost nothing of the shaped return for the first ~80k steps, in which the
@@ -110,6 +111,7 @@ def probe(
                 "explained_variance": _number(logged.get("train/explained_variance")),
                 "action_std": _action_std(model),
                 "eval_success": scores["success_rate"],
+                "eval_success_any": scores["success_any_rate"],
                 "eval_distance": scores["final_distance"],
                 "shaping_scale": settings["shaping_scale"] if key.reward == "shaped" else None,
             }
@@ -219,6 +221,7 @@ def format_rows(rows: list[dict[str, Any]]) -> str:
         ("action_std", "std", 6),
         ("eval_distance", "eval dist", 9),
         ("eval_success", "eval succ", 9),
+        ("eval_success_any", "any step", 8),
     ]
     lines = [" ".join(title.rjust(width) for _, title, width in columns)]
     for row in rows:

@@ -302,25 +302,29 @@ def evaluate(
     model: Any, env: gymnasium.Env, episodes: int | list[dict[str, Any]], seed: int = 0
 ) -> dict[str, float]:
     """The deterministic policy on the task's own sparse reward: success rate at the end of
-    the episode, mean final distance, mean undiscounted sparse return. ``episodes`` is a list
-    of ``reset`` arguments (:func:`evaluation_episodes`), or a count of episodes seeded from
-    ``seed`` on."""
+    the episode, success rate at any step of it (MetaWorld's own protocol, whose episodes never
+    end on success), mean final distance, mean undiscounted sparse return. ``episodes`` is a
+    list of ``reset`` arguments (:func:`evaluation_episodes`), or a count of episodes seeded
+    from ``seed`` on. Only reads the policy: the numbers of training do not depend on it."""
     if isinstance(episodes, int):
         episodes = [{"seed": seed + e} for e in range(episodes)]
-    successes, distances, returns = [], [], []
+    successes, reached, distances, returns = [], [], [], []
     for reset in episodes:
         obs, info = env.reset(**reset)
-        total, done = 0.0, False
+        total, done, ever = 0.0, False, False
         while not done:
             action, _ = model.predict(obs, deterministic=True)
             obs, reward, terminated, truncated, info = env.step(action)
             total += float(reward)
+            ever = ever or bool(info.get("success", False))
             done = terminated or truncated
         successes.append(float(bool(info.get("success", False))))
+        reached.append(float(ever))
         distances.append(float(info.get("distance", math.nan)))
         returns.append(total)
     return {
         "success_rate": float(np.mean(successes)),
+        "success_any_rate": float(np.mean(reached)),
         "final_distance": float(np.mean(distances)),
         "sparse_return": float(np.mean(returns)),
     }

@@ -31,7 +31,8 @@ from planshape.results import rows as schema
 __all__ = ["FLOAT_COLUMNS", "INT_COLUMNS", "export", "load", "records"]
 
 #: the typed columns of a row (:data:`planshape.results.rows.FIELDS` of type ``int`` and
-#: ``float``; the evaluation protocol is one, which rows carry from protocol 2 on)
+#: ``float``; optional ones too: the evaluation protocol, which rows carry from protocol 2 on,
+#: and success at any step)
 INT_COLUMNS = tuple(f.name for f in schema.FIELDS if f.type is int)
 FLOAT_COLUMNS = tuple(f.name for f in schema.FIELDS if f.type is float)
 #: the columns a frame starts with, in this order (the rest follow, sorted)

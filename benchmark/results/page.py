@@ -110,7 +110,9 @@ HOW_TO_READ = (
     "marked (n=2: no CI): a percentile bootstrap of 2-4 seeds returns [min, max] or a "
     "zero-width interval, which says nothing about how much the seeds tell.",
     "**Success** and **final distance** are the task's own metrics at the end of training, over "
-    "deterministic evaluation episodes; never the shaped return.",
+    "deterministic evaluation episodes; never the shaped return. Success is the task's flag at "
+    "the episode's end; **any step** (where runs recorded it) counts an episode in which the flag "
+    "was set at some step, MetaWorld's own protocol.",
     "**Norm. success / distance**: (entry − sparse) / (dense − sparse) of the mean over seeds: "
     "0 = as good as the sparse reward, 1 = as good as the hand-crafted dense reward, above 1 "
     "better; n/a where dense is no better than sparse (the scale would invert).",

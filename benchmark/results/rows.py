@@ -110,6 +110,14 @@ class StoredRow(TypedDict):
         Annotated[int, "the evaluation protocol (absent in rows of protocol 1)"]
     ]
     evaluation: NotRequired[Annotated[str, "what one evaluation point measured, in words"]]
+    success_any_rate: NotRequired[
+        Annotated[
+            float,
+            "the fraction of evaluation episodes in which the task's success flag is set at some "
+            "step, not only at the end (MetaWorld's own protocol); absent in rows stored before "
+            "it was recorded",
+        ]
+    ]
 
 
 class Field(typing.NamedTuple):
@@ -156,6 +164,7 @@ INT_COLUMNS = _named(int)
 FLOAT_COLUMNS = _named(float)
 STR_COLUMNS = _named(str)
 INVARIANCE_VERDICTS: tuple[str, ...] = typing.get_args(Invariance)
+_OPTIONAL_FLOATS = tuple(f.name for f in FIELDS if not f.required and f.type is float)
 
 
 def _type_name(kind: Any) -> str:
@@ -240,6 +249,7 @@ def _checked(row: Any) -> dict[str, Any]:
     out = dict(row)
     out |= {column: _integer(column, out[column]) for column in INT_COLUMNS}
     out |= {column: _number(column, out[column]) for column in FLOAT_COLUMNS}
+    out |= {column: _number(column, out[column]) for column in _OPTIONAL_FLOATS if column in out}
     for column in STR_COLUMNS:
         if not isinstance(out[column], str):
             raise _RowProblem(f"column {column!r} must be a string, got {out[column]!r}")

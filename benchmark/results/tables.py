@@ -228,9 +228,24 @@ def _task_cells(row: Summary) -> tuple[Cell, ...]:
     )
 
 
+#: the column of mean success at any step of the episodes, after "Mean success"
+_ANY_STEP_HEADING = "Mean success, any step"
+
+
 def task_table(ranked: Iterable[Summary]) -> Table:
-    """The cells of one task and algorithm, ranked (:func:`by_task_and_algo`)."""
-    return _cells_table(_TASK_HEADINGS, (_task_cells(r) for r in ranked))
+    """The cells of one task and algorithm, ranked (:func:`by_task_and_algo`). Where some entry's
+    runs recorded success at any step of the episodes (``success_any_mean``), a column shows it
+    after the mean success."""
+    ranked = list(ranked)
+    if all(missing(r.get("success_any_mean")) for r in ranked):
+        return _cells_table(_TASK_HEADINGS, (_task_cells(r) for r in ranked))
+    at = _TASK_HEADINGS.index("Mean success") + 1
+    headings = (*_TASK_HEADINGS[:at], _ANY_STEP_HEADING, *_TASK_HEADINGS[at:])
+    rows = (
+        (*cells[:at], _number_cell(r, "success_any_mean"), *cells[at:])
+        for r, cells in ((r, _task_cells(r)) for r in ranked)
+    )
+    return _cells_table(headings, rows)
 
 
 _AGGREGATE_HEADINGS = (

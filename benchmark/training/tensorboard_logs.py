@@ -95,7 +95,7 @@ def shaping_callback(gamma: float) -> Any:
 
 def record_evaluation(model: Any, point: dict[str, float]) -> None:
     """Write one evaluation point of the run at the learner's current step."""
-    for name in ("success_rate", "final_distance", "sparse_return"):
+    for name in ("success_rate", "success_any_rate", "final_distance", "sparse_return"):
         if name in point:
             model.logger.record(f"eval/{name}", point[name])
     model.logger.dump(model.num_timesteps)

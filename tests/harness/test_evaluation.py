@@ -156,3 +156,34 @@ def test_dry_run_selects_with_k_exactly_what_the_suite_collects(tmp_path, expres
 def test_dry_run_refuses_a_k_that_is_not_an_expression(capsys):
     assert main(["bench", "--dry-run", "-k", "(", "--out", "/nonexistent/x"]) == 2
     assert "-k '(' is not a pytest -k expression" in capsys.readouterr().err
+
+
+class _ExpertThenAway:
+    """MetaWorld's scripted expert for ``leave_at`` steps of each episode, then full speed up and
+    away: a policy whose episodes succeed on the way and fail at their end."""
+
+    def __init__(self, env_name: str, leave_at: int) -> None:
+        from metaworld.policies import ENV_POLICY_MAP
+
+        self.expert, self.leave_at, self.t = ENV_POLICY_MAP[env_name](), leave_at, 0
+
+    def predict(self, obs, deterministic=True):
+        step_of_episode, self.t = self.t % 500, self.t + 1  # MetaWorld's episodes: 500 steps
+        if step_of_episode >= self.leave_at:
+            return [0.0, -1.0, 1.0, 0.0], None
+        return self.expert.get_action(obs.copy()), None
+
+
+def test_success_at_any_step_is_recorded_beside_success_at_the_end():
+    """MetaWorld never terminates on success: an episode can pass through it and end elsewhere.
+    The end-of-episode rate misses those, the any-step rate (MetaWorld's protocol) counts them."""
+    import gymnasium
+
+    task = "planshape/MetaWorld-reach-v4"
+    env = gymnasium.make(task, reward="sparse")
+    env_name = env.unwrapped.spec.kwargs["env_name"]
+    stays = evaluate(_ExpertThenAway(env_name, leave_at=500), env, 2)
+    leaves = evaluate(_ExpertThenAway(env_name, leave_at=150), env, 2)
+    assert stays["success_rate"] == stays["success_any_rate"] == 1.0
+    assert leaves["success_any_rate"] == 1.0 and leaves["success_rate"] == 0.0
+    assert leaves["final_distance"] > 0.05 > stays["final_distance"]

@@ -202,3 +202,27 @@ def test_policy_videos_in_the_results_folder_appear_beside_their_task(tmp_path):
     assert "![planshape/Reach-v0: final policy of dense (PPO, seed0)]" in board
     assert "videos/planshape-Reach-v0__dense__PPO__seed0.gif" in board
     assert "data:image/gif;base64," in (tmp_path / "index.html").read_text()
+
+
+def test_success_at_any_step_shows_only_where_every_run_recorded_it(tmp_path):
+    """Rows that record success at any step (MetaWorld's protocol) get their own column; a cell
+    with one run stored before that field existed shows n/a, not a mean of the others."""
+    rows = []
+    for seed in range(5):
+        rows += make_run(seed=seed, final_success=0.0, success_any_rate=0.6)
+        rows += make_run(entry="dense", seed=seed, final_success=1.0, success_any_rate=1.0)
+    rows += make_run(entry="plan-based/grid", seed=0, final_success=0.2, success_any_rate=0.9)
+    rows += make_run(entry="plan-based/grid", seed=1, final_success=0.2)
+    render_leaderboard(rows, tmp_path, HEADER, reps=REPS)
+    text = (tmp_path / "LEADERBOARD.md").read_text()
+    assert "| Mean success | Mean success, any step |" in text
+    assert "| `sparse` | 5 | 0.000 [0.000, 0.000] | 0.000 | 0.600 |" in text
+    assert "| `plan-based/grid` | 2 | 0.200 (n=2: no CI) | 0.200 | n/a |" in text
+    cells = json.loads((tmp_path / "summary.json").read_text())["per_task"]
+    assert {c["entry"]: c["success_any_mean"] for c in cells} == {
+        "dense": 1.0, "plan-based/grid": None, "sparse": 0.6
+    }  # fmt: skip
+
+    older = [{k: v for k, v in r.items() if k != "success_any_rate"} for r in rows]
+    render_leaderboard(older, tmp_path, HEADER, reps=REPS)
+    assert "any step |" not in (tmp_path / "LEADERBOARD.md").read_text()

@@ -3,11 +3,13 @@ fit it, and the README documents exactly its fields."""
 
 from __future__ import annotations
 
+import math
 import typing
 from pathlib import Path
 
 import pytest
 
+from planshape.errors import ResultsError
 from planshape.results import frame, rows
 from planshape.results.rows import (
     COLUMNS,
@@ -39,8 +41,8 @@ def test_the_typed_columns_derive_from_the_schema():
     assert FLOAT_COLUMNS == (
         "success_rate", "final_distance", "sparse_return", "wall_time_s", "steps_per_s", "gamma",
     )  # fmt: skip
-    assert (*INT_COLUMNS, "eval_protocol") == frame.INT_COLUMNS
-    assert frame.FLOAT_COLUMNS == FLOAT_COLUMNS
+    assert (*INT_COLUMNS, "eval_protocol") == frame.INT_COLUMNS  # optional ones typed too
+    assert (*FLOAT_COLUMNS, "success_any_rate") == frame.FLOAT_COLUMNS
 
 
 def test_synthetic_rows_fit_the_schema():
@@ -79,3 +81,11 @@ def test_the_readme_documents_the_row_schema():
 
 def test_the_module_names_its_parts():
     assert {"StoredRow", "validate_row", "read_run", "load_rows"} <= set(rows.__all__)
+
+
+def test_success_at_any_step_is_optional_and_checked_as_a_number():
+    row = make_run()[0]
+    assert "success_any_rate" not in validate_row(row)
+    assert math.isnan(validate_row({**row, "success_any_rate": None})["success_any_rate"])
+    with pytest.raises(ResultsError, match="'success_any_rate' must be a number"):
+        validate_row({**row, "success_any_rate": "high"})
