@@ -30,6 +30,9 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any, Literal, NamedTuple
 
+from planshape.results.cells import DENSE, REFERENCE_ENTRIES, SPARSE
+from planshape.results.tables import by_task_and_algo
+
 __all__ = ["MIN_SEEDS", "SOLVED", "BudgetCheck", "budget_check", "budget_checks"]
 
 #: mean final success at which an entry counts as solving the task at the budget
@@ -52,7 +55,7 @@ def _success(rows: Sequence[Mapping[str, Any]], entry: str) -> float | None:
 
 
 def _shaped_best(rows: Sequence[Mapping[str, Any]]) -> tuple[str, float] | None:
-    shaped = [r for r in rows if r["entry"] not in ("sparse", "dense")]
+    shaped = [r for r in rows if r["entry"] not in REFERENCE_ENTRIES]
     if not shaped:
         return None
     best = max(shaped, key=lambda r: float(r["success_mean"]))
@@ -60,7 +63,7 @@ def _shaped_best(rows: Sequence[Mapping[str, Any]]) -> tuple[str, float] | None:
 
 
 def _levels(dense: float | None, sparse: float | None, best: tuple[str, float] | None) -> str:
-    references = (("dense", dense), ("sparse", sparse))
+    references = ((DENSE, dense), (SPARSE, sparse))
     parts = [f"{name} {value:.2f}" for name, value in references if value is not None]
     if best is not None:
         parts.append(f"best shaped {best[0]} {best[1]:.2f}")
@@ -104,14 +107,13 @@ shaped entry solves the task where sparse does not
     few = _few_seeds(rows)
     if few is not None:
         return few
-    dense, sparse, best = _success(rows, "dense"), _success(rows, "sparse"), _shaped_best(rows)
+    dense, sparse, best = _success(rows, DENSE), _success(rows, SPARSE), _shaped_best(rows)
     levels = _levels(dense, sparse, best)
     if dense is None:
         return BudgetCheck(
             "no-verdict", f"no verdict: no dense entry to check the budget against ({levels})"
         )
-    sparse_solves = sparse is not None and sparse >= SOLVED
-    if sparse_solves:
+    if sparse is not None and sparse >= SOLVED:
         return BudgetCheck(
             "separates-little",
             f"separates little: sparse already reaches {SOLVED} mean success ({levels}), "
@@ -136,34 +138,26 @@ shaped entry solves the task where sparse does not
 
 
 def budget_checks(summary: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
-    """The budget check of every (task, algorithm) cell in ``summary`` (rows of any cells, one
-    per entry), sorted by task and algorithm: ``task``, ``algo``, ``budget``, ``status``,
-    ``text``.
+    """The budget check of every (task, algorithm) cell in ``summary`` (rows of
+    :func:`~planshape.results.cells.summarize`, grouped as the leaderboard groups them), sorted
+    by task and algorithm: ``task``, ``algo``, ``budget``, ``status``, ``text``.
 
     Example:
         >>> rows = [
-        ...     {"task": "t", "algo": "PPO", "budget": 100, "entry": "dense", "n_seeds": 5,
-        ...      "success_mean": 0.9},
-        ...     {"task": "t", "algo": "PPO", "budget": 100, "entry": "sparse", "n_seeds": 5,
-        ...      "success_mean": 0.1},
+        ...     {"task": "t", "algo": "PPO", "budget": 100, "entry": entry, "n_seeds": 5,
+        ...      "success_mean": success, "success_iqm": success, "distance_iqm": 0.1}
+        ...     for entry, success in (("dense", 0.9), ("sparse", 0.1))
         ... ]
         >>> [(c["task"], c["algo"], c["status"]) for c in budget_checks(rows)]
         [('t', 'PPO', 'decides')]
     """
-    cells: dict[tuple[str, str], list[Mapping[str, Any]]] = {}
-    for row in summary:
-        cells.setdefault((str(row["task"]), str(row["algo"])), []).append(row)
-    checks = []
-    for (task, algo), rows in sorted(cells.items()):
-        check = budget_check(rows)
-        budget = rows[0].get("budget")
-        checks.append(
-            {
-                "task": task,
-                "algo": algo,
-                "budget": budget,
-                "status": check.status,
-                "text": check.text,
-            }
-        )
-    return checks
+    return [
+        {
+            "task": task,
+            "algo": algo,
+            "budget": rows[0].get("budget"),
+            **budget_check(rows)._asdict(),
+        }
+        for task, by_algo in by_task_and_algo(summary).items()
+        for algo, rows in by_algo.items()
+    ]

@@ -11,8 +11,8 @@ dumps of the logger:
 * ``shaping/final_progress`` — ``max_idx`` at the episode's end;
 * ``shaping/phi_start`` and ``shaping/phi_end`` — φ of the episode's first state (recovered
   as γ·φ(s1) − F0) and of its last (0 when the episode terminated, correctness rule 2);
-* ``eval/success_rate``, ``eval/final_distance`` and ``eval/sparse_return`` at every
-  evaluation point of the run.
+* ``eval/success_rate``, ``eval/success_any_rate``, ``eval/final_distance`` and
+  ``eval/sparse_return`` at every evaluation point of the run.
 
 Logging reads the step's ``info`` and writes files; it changes neither the run's identity nor
 its numbers (a test trains the same spec with and without it). It needs the ``tensorboard``
