@@ -47,6 +47,7 @@ from functools import cache
 from typing import Any
 
 from planshape.errors import UnknownIdError
+from planshape.results.measure import SuccessMeasure, describe, measured
 from planshape.shaping.registration import task_spec
 from planshape.training.hyperparams import SAC_SHAPING_SCALE, SHAPING_SCALE
 
@@ -183,6 +184,10 @@ class Profile:
         caveats: what a reader of its leaderboard must know.
         archived: for a profile kept only for its stored runs, why it cannot be run any more
             and how to reproduce it (``planshape bench`` refuses it).
+        success_measure: which episodes its leaderboard counts as solved
+            (:mod:`planshape.results.measure`): ``"end"`` — the success flag on the episode's
+            last step; ``"any-step"`` — at any step (MetaWorld's protocol). Only how stored
+            rows are scored: it is no part of a run's id.
     """
 
     name: str
@@ -192,6 +197,7 @@ class Profile:
     eval_episodes: int
     caveats: Sequence[str] = field(default_factory=tuple)
     archived: str = ""
+    success_measure: SuccessMeasure = "end"
 
     @property
     def folder(self) -> str:
@@ -276,11 +282,12 @@ class Profile:
             if stale
             else []
         )
+        measure = [] if self.success_measure == "end" else [describe(self.success_measure)]
         return {
             "profile": self.name,
             "description": self.description,
             "command": command,
-            "caveats": [*partial, *self.caveats, *kept],
+            "caveats": [*partial, *measure, *self.caveats, *kept, *self._counted_at_end(rows)],
             "eval_every": self.eval_every,
             "eval_episodes": self.eval_episodes,
         }
@@ -310,7 +317,39 @@ class Profile:
         return self._current([row])[0]
 
     def shown(self, rows: Sequence[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
-        """The rows :meth:`shows` keeps."""
+        """The rows :meth:`shows` keeps, with success counted by the profile's
+        :attr:`success_measure` (:func:`planshape.results.measure.measured`: a cell with a run
+        that cannot be counted so stays counted at the episode's end, and :meth:`header` says
+        so).
+
+        Example:
+            >>> row = {"run_id": "r", "success_rate": 0.0, "success_any_rate": 1.0}
+            >>> METAWORLD_PROFILE.success_measure
+            'any-step'
+            >>> row |= {"task": "t", "algo": "SBX-SAC"}
+            >>> [r["success_rate"] for r in METAWORLD_PROFILE._measured([row])]
+            [1.0]
+        """
+        return self._measured(self._kept(rows))
+
+    def _measured(self, rows: Sequence[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
+        return measured(rows, self.success_measure)[0]
+
+    def _counted_at_end(self, rows: Sequence[Mapping[str, Any]]) -> list[str]:
+        """The caveats on the cells the success measure leaves counted at the episode's end
+        (:func:`planshape.results.measure.measured`), if any."""
+        at_end = measured(self._kept(rows), self.success_measure)[1]
+        return [
+            f"{task} / {algo}: success counted at the episode's end, not at any step: "
+            f"{len(ids)} of its stored runs predate the any-step rate (e.g. runs/{ids[0]}.jsonl). "
+            f"Trained again (planshape bench --profile {self.name} --out DIR, with DIR empty), "
+            "each run repeats its stored curve under the same id with the rate added; copy the "
+            "new files over the old"
+            for (task, algo), ids in at_end.items()
+        ]
+
+    def _kept(self, rows: Sequence[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
+        """The rows :meth:`shows` keeps, as stored."""
         return [r for r, ok in zip(rows, self._current(rows), strict=True) if ok]
 
     def _current(self, rows: Sequence[Mapping[str, Any]]) -> list[bool]:
@@ -767,6 +806,7 @@ METAWORLD_PROFILE = Profile(
     ),
     eval_every=_METAWORLD_SAC_EVAL_EVERY,
     eval_episodes=10,
+    success_measure="any-step",
     caveats=(
         "budgets per task from SBX-SAC learning curves of the dense reward (planshape.harness."
         "profiles): at each, dense's deterministic success on seed 0 has reached 0.8; over 5 "

@@ -324,8 +324,9 @@ def _cell_row(groups: Cells, key: tuple[str, str, str], boot: _Bootstrap) -> dic
     row |= boot.ci("success_iqm", success, iqm) | boot.ci("success_mean", success, mean)
     row |= boot.ci("distance_iqm", distance, iqm) | boot.ci("distance_mean", distance, mean)
     row["sparse_return_mean"] = mean([f["sparse_return"] for f in finals])
-    any_step = [f.get("success_any_rate", math.nan) for f in finals]
-    row["success_any_mean"] = math.nan if any(map(math.isnan, any_step)) else mean(any_step)
+    for column in ("success_any", "success_end"):
+        rates = [f.get(f"{column}_rate", math.nan) for f in finals]
+        row[f"{column}_mean"] = math.nan if any(map(math.isnan, rates)) else mean(rates)
     row["normalized_success"] = normalized_score(
         row["success_mean"], *references(groups, task, algo, "success_rate")
     )
@@ -354,6 +355,9 @@ def summarize(
     * ``success_iqm``, ``success_mean`` — final success rate over seeds;
     * ``success_any_mean`` — mean over seeds of the final success rate at any step of the
       episodes (MetaWorld's own protocol); NaN unless every run recorded it;
+    * ``success_end_mean`` — where rows count success at any step
+      (:func:`planshape.results.measure.measured`), the mean final success rate at the
+      episode's end; NaN otherwise;
     * ``distance_iqm``, ``distance_mean`` — final distance to the goal (lower is better);
     * ``sparse_return_mean`` — final undiscounted return under the task's sparse reward;
     * ``normalized_success``, ``normalized_distance`` — ``normalized_score`` of the mean

@@ -111,8 +111,9 @@ HOW_TO_READ = (
     "zero-width interval, which says nothing about how much the seeds tell.",
     "**Success** and **final distance** are the task's own metrics at the end of training, over "
     "deterministic evaluation episodes; never the shaped return. Success is the task's flag at "
-    "the episode's end; **any step** (where runs recorded it) counts an episode in which the flag "
-    "was set at some step, MetaWorld's own protocol.",
+    "the episode's end, except in cells whose budget check says it counts the flag at **any "
+    "step** (MetaWorld's own protocol: set at some step of the episode); where runs recorded "
+    "both, the other count has its own column.",
     "**Norm. success / distance**: (entry − sparse) / (dense − sparse) of the mean over seeds: "
     "0 = as good as the sparse reward, 1 = as good as the hand-crafted dense reward, above 1 "
     "better; n/a where dense is no better than sparse (the scale would invert).",
@@ -167,6 +168,17 @@ def _across_tasks(
     return blocks + _figures(figures.get(ACROSS, []), out_dir)
 
 
+def _measure_note(ranked: Sequence[Mapping[str, Any]]) -> str:
+    """Where the cell counts success at any step (:mod:`planshape.results.measure`), the
+    sentence that says so; the end of the episode is the default and goes unsaid."""
+    if all(tables.missing(r.get("success_end_mean")) for r in ranked):
+        return ""
+    return (
+        " Success here counts an episode whose success flag is set at any step (MetaWorld's "
+        "protocol); the end-of-episode rate is in its own column."
+    )
+
+
 def _task(
     task: str,
     by_algo: Mapping[str, Sequence[Mapping[str, Any]]],
@@ -177,7 +189,7 @@ def _task(
     for algo, ranked in by_algo.items():
         blocks += [
             Heading(3, f"{algo} — budget {ranked[0]['budget']:,} steps"),
-            Paragraph(f"**Budget check**: {budget_check(ranked).text}"),
+            Paragraph(f"**Budget check**: {budget_check(ranked).text}{_measure_note(ranked)}"),
             tables.task_table(ranked),
         ]
     return blocks + _figures(figures, out_dir)

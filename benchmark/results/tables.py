@@ -228,21 +228,29 @@ def _task_cells(row: Summary) -> tuple[Cell, ...]:
     )
 
 
-#: the column of mean success at any step of the episodes, after "Mean success"
-_ANY_STEP_HEADING = "Mean success, any step"
+#: the columns of success counted the other way, after "Mean success": at any step of the
+#: episodes where success counts at the end, at the end where it counts at any step
+#: (:mod:`planshape.results.measure`)
+_OTHER_SUCCESS_HEADINGS = {
+    "success_any_mean": "Mean success, any step",
+    "success_end_mean": "Mean success, episode end",
+}
 
 
 def task_table(ranked: Iterable[Summary]) -> Table:
     """The cells of one task and algorithm, ranked (:func:`by_task_and_algo`). Where some entry's
-    runs recorded success at any step of the episodes (``success_any_mean``), a column shows it
-    after the mean success."""
+    runs recorded success counted the other way too (``success_any_mean`` or
+    ``success_end_mean``), a column shows it after the mean success."""
     ranked = list(ranked)
-    if all(missing(r.get("success_any_mean")) for r in ranked):
+    column = next(
+        (c for c in _OTHER_SUCCESS_HEADINGS if not all(missing(r.get(c)) for r in ranked)), None
+    )
+    if column is None:
         return _cells_table(_TASK_HEADINGS, (_task_cells(r) for r in ranked))
     at = _TASK_HEADINGS.index("Mean success") + 1
-    headings = (*_TASK_HEADINGS[:at], _ANY_STEP_HEADING, *_TASK_HEADINGS[at:])
+    headings = (*_TASK_HEADINGS[:at], _OTHER_SUCCESS_HEADINGS[column], *_TASK_HEADINGS[at:])
     rows = (
-        (*cells[:at], _number_cell(r, "success_any_mean"), *cells[at:])
+        (*cells[:at], _number_cell(r, column), *cells[at:])
         for r, cells in ((r, _task_cells(r)) for r in ranked)
     )
     return _cells_table(headings, rows)
