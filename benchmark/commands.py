@@ -7,7 +7,7 @@ and ``planshape --help`` lists them in this order.
 
 Example:
     >>> sorted(registered())[:3]
-    ['bench', 'check-invariance', 'export']
+    ['adopt', 'bench', 'check-invariance']
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ Setup = Callable[[argparse.ArgumentParser], Handler]
 MODULES = (
     "planshape.cli",
     "planshape.harness.bench",
+    "planshape.harness.adopt",
     "planshape.harness.catalog",
     "planshape.harness.probe",
     "planshape.results.frame",

@@ -16,7 +16,7 @@ def test_every_listed_module_registers_and_none_imports_the_cli():
             code = [line for line in handle if not line.lstrip().startswith(">>>")]
         assert not any(line.startswith("from planshape.cli import") for line in code), name
     names = set(registered())
-    assert {"plan", "bench", "leaderboard", "tasks", "probe", "export", "render"} <= names
+    assert {"plan", "bench", "adopt", "leaderboard", "tasks", "probe", "export", "render"} <= names
     assert "check-invariance" in names
     help_text = build_parser().format_help()
     assert all(name in help_text for name in names)

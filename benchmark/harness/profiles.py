@@ -343,8 +343,8 @@ class Profile:
             f"{task} / {algo}: success counted at the episode's end, not at any step: "
             f"{len(ids)} of its stored runs predate the any-step rate (e.g. runs/{ids[0]}.jsonl). "
             f"Trained again (planshape bench --profile {self.name} --out DIR, with DIR empty), "
-            "each run repeats its stored curve under the same id with the rate added; copy the "
-            "new files over the old"
+            "each run repeats its stored curve under the same id with the rate added; "
+            f"planshape adopt DIR --out {self.folder} then replaces the old files"
             for (task, algo), ids in at_end.items()
         ]
 
