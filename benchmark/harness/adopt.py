@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import shutil
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,8 +39,8 @@ from typing import Any
 
 from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
-from planshape.harness.profiles import PROFILES, Profile, get_profile
-from planshape.harness.store import ResultStore
+from planshape.harness.profiles import Profile, get_profile, profile_of_folder
+from planshape.harness.store import ResultStore, write_atomic
 
 __all__ = ["EXECUTION_FIELDS", "Adoption", "adopt", "plan_adoption", "repeat_problem"]
 
@@ -164,11 +163,8 @@ def adopt(
     plan = plan_adoption(source, out, profile, whole_entries=whole_entries)
     if not dry_run:
         store = ResultStore(out)
-        store.runs.mkdir(parents=True, exist_ok=True)
         for path in (*plan.added, *plan.replaced):
-            temporary = store.runs / f".{path.stem}.adopt.tmp"
-            shutil.copyfile(path, temporary)
-            temporary.replace(store.path(path.stem))
+            write_atomic(store.path(path.stem), path.read_bytes())
     return plan
 
 
@@ -204,9 +200,9 @@ def _profile_named(name: str | None, out: Path) -> Profile:
     """The ``--profile`` named, else the profile whose folder ``out`` is."""
     if name is not None:
         return get_profile(name)
-    for profile in PROFILES.values():
-        if Path(profile.folder).resolve() == out.resolve():
-            return profile
+    profile = profile_of_folder(out)
+    if profile is not None:
+        return profile
     raise BadInputError(
         f"{out}: not a profile's own folder; name the profile whose results it holds with --profile"
     )

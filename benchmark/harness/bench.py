@@ -23,7 +23,13 @@ from typing import Any
 
 from planshape.commands import Handler, subcommand
 from planshape.errors import BadInputError
-from planshape.harness.profiles import PROFILES, RESULTS_ROOT, Profile, get_profile
+from planshape.harness.profiles import (
+    PROFILES,
+    RESULTS_ROOT,
+    Profile,
+    get_profile,
+    profile_of_folder,
+)
 
 SUITE = Path(__file__).resolve().parents[1] / "suite"
 
@@ -310,10 +316,8 @@ def _check_submission(reference: str) -> None:
 
 def _profile_of(out: Path, rows: list[dict]) -> str:
     """The profile whose folder ``out`` is, else the last profile the rows name."""
-    for profile in PROFILES.values():
-        if Path(profile.folder).resolve() == out.resolve():
-            return profile.name
-    return sorted({r["profile"] for r in rows})[-1]
+    profile = profile_of_folder(out)
+    return profile.name if profile is not None else sorted({r["profile"] for r in rows})[-1]
 
 
 @subcommand("leaderboard", "render the leaderboard again from the stored results")

@@ -44,6 +44,7 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
+from pathlib import Path
 from typing import Any
 
 from planshape.errors import UnknownIdError
@@ -932,3 +933,16 @@ def get_profile(name: str) -> Profile:
     if name not in PROFILES:
         raise UnknownIdError("profile", name, PROFILES)
     return PROFILES[name]
+
+
+def profile_of_folder(out: str | Path) -> Profile | None:
+    """The profile whose own results folder ``out`` is (:attr:`Profile.folder`, relative to
+    the working directory), else ``None``.
+
+    Example:
+        >>> profile_of_folder("leaderboard/metaworld").name, profile_of_folder("/tmp/x")
+        ('metaworld', None)
+    """
+    return next(
+        (p for p in PROFILES.values() if Path(p.folder).resolve() == Path(out).resolve()), None
+    )
