@@ -126,7 +126,8 @@ HOW_TO_READ = (
     "**Budget check**: what a task's cell can decide. *decides*: every entry has 5 seeds or "
     "more, and dense reaches 0.8 mean success while sparse does not (or dense fails and a "
     "shaped entry solves the task, as on maze-reach); *separates little*: sparse reaches 0.8 "
-    "too; *no verdict*: fewer than 5 seeds, no dense entry, or no entry reaches 0.8, so the "
+    "too; *no verdict*: fewer than 5 seeds, no dense or no sparse entry, or no entry reaches "
+    "0.8, so the "
     "budget cannot show whether shaping helps.",
 )
 
@@ -174,8 +175,8 @@ def _measure_note(ranked: Sequence[Mapping[str, Any]]) -> str:
     if all(tables.missing(r.get("success_end_mean")) for r in ranked):
         return ""
     return (
-        " Success here counts an episode whose success flag is set at any step (MetaWorld's "
-        "protocol); the end-of-episode rate is in its own column."
+        ". Success here counts an episode whose success flag is set at any step (MetaWorld's "
+        "protocol); the end-of-episode rate is in its own column"
     )
 
 

@@ -4,8 +4,8 @@ A comparison of rewards says something only where the budget separates them. A c
 sparse and dense both fail cannot show that a potential helps (every entry may fail for want of
 steps), and a cell in which sparse already succeeds leaves a potential little to win. The rule
 planshape's profiles are held to: every entry has at least :data:`MIN_SEEDS` seeds, and the
-hand-crafted dense reward reaches :data:`SOLVED` mean final success — or, where dense fails by
-design (maze-reach's wall), some shaped entry does while sparse does not.
+hand-crafted dense reward reaches :data:`SOLVED` mean final success while sparse does not — or,
+where dense fails by design (maze-reach's wall), some shaped entry does while sparse does not.
 
 :func:`budget_check` applies that rule to a cell's summary rows (one per entry, as
 :func:`~planshape.results.cells.summarize` makes them) and says in one sentence what the cell
@@ -89,7 +89,8 @@ def budget_check(rows: Sequence[Mapping[str, Any]]) -> BudgetCheck:
     ``decides``: dense reaches :data:`SOLVED` and sparse does not, or dense falls short and a
     shaped entry solves the task where sparse does not (the maze-reach case).
     ``separates-little``: sparse reaches :data:`SOLVED` too, so a potential can gain little.
-    ``no-verdict``: an entry has fewer than :data:`MIN_SEEDS` seeds, there is no dense entry,
+    ``no-verdict``: an entry has fewer than :data:`MIN_SEEDS` seeds, there is no dense or no
+    sparse entry (without sparse, nothing shows that the task is not solved without shaping),
     or no entry solves the task at this budget.
 
     Example:
@@ -112,6 +113,12 @@ shaped entry solves the task where sparse does not
     if dense is None:
         return BudgetCheck(
             "no-verdict", f"no verdict: no dense entry to check the budget against ({levels})"
+        )
+    if sparse is None:
+        return BudgetCheck(
+            "no-verdict",
+            f"no verdict: no sparse entry to show whether the budget separates the rewards "
+            f"({levels})",
         )
     if sparse is not None and sparse >= SOLVED:
         return BudgetCheck(

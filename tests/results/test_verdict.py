@@ -36,6 +36,9 @@ def _cell(seeds: int = 5, **success: float) -> list[dict[str, object]]:
         (_cell(seeds=MIN_SEEDS - 1, sparse=0.0, dense=1.0, plan_grid=1.0), "no-verdict"),
         # no dense entry to check the budget against
         (_cell(sparse=0.0, plan_grid=1.0), "no-verdict"),
+        # no sparse entry: nothing shows the task needs shaping at this budget
+        (_cell(dense=0.9, plan_grid=0.5), "no-verdict"),
+        (_cell(dense=0.0, plan_grid=1.0), "no-verdict"),
     ],
 )
 def test_status(cell, status):
@@ -46,6 +49,11 @@ def test_the_sentence_names_the_levels_and_the_best_shaped_entry():
     text = budget_check(_cell(sparse=0.4, dense=0.62, plan_stages=0.36, other_grid=0.1)).text
     assert text.startswith("no verdict: no entry reaches 0.8 mean success")
     assert "dense 0.62, sparse 0.40, best shaped plan/stages 0.36" in text
+
+
+def test_a_missing_sparse_entry_is_named():
+    text = budget_check(_cell(dense=0.9, plan_grid=0.5)).text
+    assert text.startswith("no verdict: no sparse entry to show whether the budget separates")
 
 
 def test_the_seed_count_is_named():
