@@ -49,6 +49,7 @@ from typing import Any
 
 from planshape.errors import UnknownIdError
 from planshape.results.measure import SuccessMeasure, describe, measured
+from planshape.results.outcome import CONTROL_POTENTIALS
 from planshape.shaping.registration import task_spec
 from planshape.training.hyperparams import SAC_SHAPING_SCALE, SHAPING_SCALE
 
@@ -81,8 +82,6 @@ PAPER_MODELS = ("single", "multi", "grid")
 PLANNING_POTENTIALS = ("plan-distance", "plan-path", "h-star", "h-star-geodesic")
 #: the grid models of the planar tasks (push also has one with diagonal, sliding pushes)
 GRID_MODELS = ("grid", "grid-diagonal")
-#: the control entry: the hand-crafted dense reward's distance as a potential
-CONTROL_POTENTIALS = ("goal-distance",)
 METAWORLD_V0 = tuple(
     f"planshape/MetaWorld-{name}-v3"
     for name in (

@@ -12,6 +12,8 @@ By job, around the typed row (:class:`~planshape.results.rows.StoredRow`):
 * :mod:`~planshape.results.provenance` — how the results were produced, and the caveats;
 * :mod:`~planshape.results.tables` — the leaderboard's tables as data (numbers become text here);
 * :mod:`~planshape.results.verdict` — what each (task, algorithm) cell can decide (budget check);
+* :mod:`~planshape.results.outcome` — what it decided: whether a planning-derived potential
+  reaches dense (shaping outcome);
 * :mod:`~planshape.results.page` — one page model of the leaderboard;
 * :mod:`~planshape.results.render` — that page as Markdown and, through jinja2 templates, HTML;
 * :mod:`~planshape.results.figures`, :mod:`~planshape.results.plots` — the plots;

@@ -166,10 +166,15 @@ def summary_table(rows: Iterable[Mapping[str, Any]], *, reps: int = 2000, seed: 
             for i, (c, w) in enumerate(zip(cells, widths, strict=True))
         ).rstrip()
 
-    checks = {(c["task"], c["algo"]): c["text"] for c in budget_checks(summary)}
+    checks = {(c["task"], c["algo"]): c for c in budget_checks(summary)}
     out = [line(headings), "  ".join("-" * w for w in widths)]
     for i, row in enumerate(table):
         out.append(line(row))
         if i + 1 == len(table) or table[i + 1][:2] != row[:2]:
-            out += [f"budget check: {checks[row[0], row[1]]}", ""]
+            check = checks[row[0], row[1]]
+            out += [
+                f"budget check: {check['text']}",
+                f"shaping outcome: {check['outcome_text']}",
+                "",
+            ]
     return "\n".join(out[:-1])

@@ -24,8 +24,9 @@ from pathlib import Path
 from typing import Any, ClassVar, Literal
 
 from planshape.results import tables
+from planshape.results.outcome import shaping_outcome, tally
 from planshape.results.tables import Table
-from planshape.results.verdict import budget_check
+from planshape.results.verdict import budget_check, budget_checks
 
 __all__ = [
     "ACROSS",
@@ -129,6 +130,11 @@ HOW_TO_READ = (
     "too; *no verdict*: fewer than 5 seeds, no dense or no sparse entry, or no entry reaches "
     "0.8, so the "
     "budget cannot show whether shaping helps.",
+    "**Shaping outcome**: whether a planning-derived potential (any shaped entry but the "
+    "control `goal-distance`) reaches dense's mean final success at equal budget (*at least "
+    "dense*), or, where none does, has the larger curve area (*faster*: it learns faster and "
+    "ends lower), or neither (*below dense*). Only a cell whose budget check *decides* can "
+    "show whether shaping helps.",
 )
 
 
@@ -169,6 +175,15 @@ def _across_tasks(
     return blocks + _figures(figures.get(ACROSS, []), out_dir)
 
 
+def _verdicts(summary: Sequence[Mapping[str, Any]]) -> list[Block]:
+    """Every cell's budget check and shaping outcome in one table, under the count of what the
+    deciding cells show."""
+    checks = budget_checks(summary)
+    if not checks:
+        return []
+    return [Heading(2, "Verdicts"), Paragraph(tally(checks)), tables.verdict_table(checks)]
+
+
 def _measure_note(ranked: Sequence[Mapping[str, Any]]) -> str:
     """Where the cell counts success at any step (:mod:`planshape.results.measure`), the
     sentence that says so; the end of the episode is the default and goes unsaid."""
@@ -191,6 +206,7 @@ def _task(
         blocks += [
             Heading(3, f"{algo} — budget {ranked[0]['budget']:,} steps"),
             Paragraph(f"**Budget check**: {budget_check(ranked).text}{_measure_note(ranked)}"),
+            Paragraph(f"**Shaping outcome**: {shaping_outcome(ranked).text}"),
             tables.task_table(ranked),
         ]
     return blocks + _figures(figures, out_dir)
@@ -205,10 +221,11 @@ def build_page(
     out_dir: Path,
     reps: int,
 ) -> Page:
-    """The leaderboard page: setup, caveats and how to read it; the across-task tables (with
-    more than one task); per task, a ranked table per algorithm under its budget check, and
-    its figures (plots and policy videos, in ``figures`` by task); the hyperparameters."""
-    blocks = _setup(header, info, reps)
+    """The leaderboard page: setup, caveats and how to read it; every cell's verdict; the
+    across-task tables (with more than one task); per task, a ranked table per algorithm under
+    its budget check and shaping outcome, and its figures (plots and policy videos, in
+    ``figures`` by task); the hyperparameters."""
+    blocks = _setup(header, info, reps) + _verdicts(summary)
     by_task = tables.by_task_and_algo(summary)
     if len(by_task) > 1 and overall:
         blocks += _across_tasks(overall, figures, out_dir)

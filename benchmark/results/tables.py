@@ -3,8 +3,9 @@
 A :class:`Table` is headings and rows of :class:`Cell` (its text, the number it sorts by and
 whether it is code); :mod:`planshape.results.render` writes it as Markdown or HTML. The
 tables are :func:`task_table` (one cell per entry of a task and algorithm, ranked by IQM final
-success), :func:`aggregate_table` (over tasks), :func:`setup_table`, :func:`budget_table` and
-:func:`hyperparameter_table`. Numbers are formatted by :func:`number` and :func:`interval`.
+success), :func:`aggregate_table` (over tasks), :func:`verdict_table` (what every cell decides),
+:func:`setup_table`, :func:`budget_table` and :func:`hyperparameter_table`. Numbers are
+formatted by :func:`number` and :func:`interval`.
 
 Example:
     >>> number(0.12345), number(float("nan")), number(-0.0001, 2)
@@ -47,6 +48,7 @@ __all__ = [
     "setup_table",
     "slug",
     "task_table",
+    "verdict_table",
 ]
 
 #: the fewest seeds whose bootstrap interval is shown: with 2-4 seeds a percentile bootstrap
@@ -291,6 +293,37 @@ def _aggregate_cells(row: Summary) -> tuple[Cell, ...]:
 def aggregate_table(rows: Iterable[Summary]) -> Table:
     """The entries of one algorithm over tasks, ranked (:func:`ranked_aggregate`)."""
     return _cells_table(_AGGREGATE_HEADINGS, (_aggregate_cells(r) for r in ranked_aggregate(rows)))
+
+
+_VERDICT_HEADINGS = ("Task", "Algorithm", "Budget", "Budget check", "Shaping outcome", "Entry")
+
+
+def _words(status: str) -> str:
+    return status.replace("-", " ")
+
+
+def verdict_table(checks: Iterable[Mapping[str, Any]]) -> Table:
+    """One row per (task, algorithm) cell: its budget, budget check and shaping outcome, from
+    :func:`planshape.results.verdict.budget_checks`.
+
+    Example:
+        >>> table = verdict_table([{"task": "planshape/Reach-v1", "algo": "PPO", "budget": 4096,
+        ...     "status": "decides", "outcome": "at-least-dense", "outcome_entry": "plan/grid"}])
+        >>> [cell.text for cell in table.rows[0]]
+        ['Reach-v1', 'PPO', '4,096', 'decides', 'at least dense', 'plan/grid']
+    """
+    rows = (
+        (
+            Cell(_short_task(c["task"])),
+            Cell(c["algo"]),
+            Cell(f"{c['budget']:,}", float(c["budget"])),
+            Cell(_words(c["status"])),
+            Cell(_words(c["outcome"])),
+            Cell(c["outcome_entry"] or "—", code=c["outcome_entry"] is not None),
+        )
+        for c in checks
+    )
+    return _cells_table(_VERDICT_HEADINGS, rows)
 
 
 # --------------------------------------------------------------------------------------------

@@ -31,6 +31,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any, Literal, NamedTuple
 
 from planshape.results.cells import DENSE, REFERENCE_ENTRIES, SPARSE
+from planshape.results.outcome import shaping_outcome
 from planshape.results.tables import by_task_and_algo
 
 __all__ = ["MIN_SEEDS", "SOLVED", "BudgetCheck", "budget_check", "budget_checks"]
@@ -147,7 +148,9 @@ shaped entry solves the task where sparse does not
 def budget_checks(summary: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
     """The budget check of every (task, algorithm) cell in ``summary`` (rows of
     :func:`~planshape.results.cells.summarize`, grouped as the leaderboard groups them), sorted
-    by task and algorithm: ``task``, ``algo``, ``budget``, ``status``, ``text``.
+    by task and algorithm: ``task``, ``algo``, ``budget``, ``status``, ``text``, and the cell's
+    shaping outcome (:func:`~planshape.results.outcome.shaping_outcome`): ``outcome``,
+    ``outcome_entry``, ``outcome_text``.
 
     Example:
         >>> rows = [
@@ -158,13 +161,19 @@ def budget_checks(summary: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
         >>> [(c["task"], c["algo"], c["status"]) for c in budget_checks(rows)]
         [('t', 'PPO', 'decides')]
     """
-    return [
-        {
-            "task": task,
-            "algo": algo,
-            "budget": rows[0].get("budget"),
-            **budget_check(rows)._asdict(),
-        }
-        for task, by_algo in by_task_and_algo(summary).items()
-        for algo, rows in by_algo.items()
-    ]
+    checks = []
+    for task, by_algo in by_task_and_algo(summary).items():
+        for algo, rows in by_algo.items():
+            outcome = shaping_outcome(rows)
+            checks.append(
+                {
+                    "task": task,
+                    "algo": algo,
+                    "budget": rows[0].get("budget"),
+                    **budget_check(rows)._asdict(),
+                    "outcome": outcome.status,
+                    "outcome_entry": outcome.entry,
+                    "outcome_text": outcome.text,
+                }
+            )
+    return checks

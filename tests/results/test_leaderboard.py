@@ -177,7 +177,8 @@ def test_summary_table_and_json_give_each_cells_budget_check(rows, rendered):
     lines = summary_table(rows, reps=REPS).splitlines()
     checks = [i for i, line in enumerate(lines) if line.startswith("budget check: ")]
     assert len(checks) == 4  # 2 tasks x 2 algorithms, each after its cell's rows
-    assert checks[-1] == len(lines) - 1
+    assert all(lines[i + 1].startswith("shaping outcome: ") for i in checks)
+    assert checks[-1] == len(lines) - 2
     assert all("no verdict: some entries have 3 seeds, fewer than 5" in lines[i] for i in checks)
     out, _ = rendered
     data = json.loads((out / "summary.json").read_text())
