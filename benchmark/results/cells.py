@@ -292,10 +292,11 @@ def _cell_identity(key: tuple[str, str, str], finals: list[dict[str, Any]]) -> d
     }
 
 
-def _improvement_over_sparse(
+def _improvement_over_references(
     groups: Cells, key: tuple[str, str, str], boot: _Bootstrap
 ) -> dict[str, float]:
-    """``p_improve`` (final success) and ``p_improve_distance`` (lower final distance)."""
+    """``p_improve`` (final success) and ``p_improve_distance`` (lower final distance) over
+    sparse, and ``p_improve_dense`` (final success) over dense."""
     task, algo, _ = key
     finals = [r.final for r in groups[key]]
     success = np.array([f["success_rate"] for f in finals])
@@ -308,8 +309,16 @@ def _improvement_over_sparse(
         poi_distance = probability_of_improvement_ci(-distance, -np.asarray(sparse_distance), *boot)
     else:
         poi = poi_distance = _NO_INTERVAL
-    return _interval_columns("p_improve", poi, success, sparse_success) | _interval_columns(
-        "p_improve_distance", poi_distance, distance, sparse_distance
+    dense_success = [r.final["success_rate"] for r in groups.get((task, algo, DENSE), [])]
+    poi_dense = (
+        probability_of_improvement_ci(success, dense_success, *boot)
+        if dense_success
+        else _NO_INTERVAL
+    )
+    return (
+        _interval_columns("p_improve", poi, success, sparse_success)
+        | _interval_columns("p_improve_distance", poi_distance, distance, sparse_distance)
+        | _interval_columns("p_improve_dense", poi_dense, success, dense_success)
     )
 
 
@@ -333,7 +342,7 @@ def _cell_row(groups: Cells, key: tuple[str, str, str], boot: _Bootstrap) -> dic
     row["normalized_distance"] = normalized_score(
         row["distance_mean"], *references(groups, task, algo, "final_distance")
     )
-    row |= _improvement_over_sparse(groups, key, boot)
+    row |= _improvement_over_references(groups, key, boot)
     row |= boot.ci("curve_area_mean", areas, mean)
     row["invariance"] = combine_invariance(f["invariance"] for f in finals)
     row["steps_per_s"] = mean([f["steps_per_s"] for f in finals])
@@ -366,6 +375,8 @@ def summarize(
     * ``p_improve`` — ``probability_of_improvement`` of final success over the ``sparse``
       entry of the same task and algorithm; ``p_improve_distance`` the same on final distance
       (a run improves when its distance is *lower*); NaN without a sparse entry;
+      ``p_improve_dense`` — the same of final success over the ``dense`` entry (NaN without
+      one);
     * ``curve_area_mean`` — mean ``curve_area`` of success rate over steps;
     * ``invariance`` — ``violated`` if any run's check says so, else ``not-checked`` if any run
       was not checked, else ``preserved`` (or ``not-applicable`` for sparse and dense);

@@ -61,11 +61,15 @@ _TIE = 1e-9
 
 class ShapingOutcome(NamedTuple):
     """One cell's answer: ``status`` (a key of :data:`OUTCOMES`), the planning-derived
-    ``entry`` that gives it (None with ``"none"``) and the sentence that says why (``text``)."""
+    ``entry`` that gives it (None with ``"none"``), the sentence that says why (``text``) and
+    that entry's probability of ending with a higher success rate than a dense run, with its
+    interval (``p_improve_dense``: value, low, high; NaN where unknown): how much 5 seeds say
+    about the difference."""
 
     status: Status
     entry: str | None
     text: str
+    p_improve_dense: tuple[float, float, float] = (math.nan, math.nan, math.nan)
 
 
 def planning_derived(row: Mapping[str, Any]) -> bool:
@@ -99,7 +103,8 @@ def _best(rows: Sequence[Mapping[str, Any]], column: str) -> Mapping[str, Any] |
 
 def shaping_outcome(rows: Sequence[Mapping[str, Any]]) -> ShapingOutcome:
     """The outcome of one (task, algorithm) cell from its summary rows (each with ``entry``,
-    ``potential``, ``success_mean`` and ``curve_area_mean``).
+    ``potential``, ``success_mean`` and ``curve_area_mean``; where they carry
+    ``p_improve_dense`` and its bounds, the sentence ends with the entry's).
 
     ``at-least-dense``: the planning-derived entry with the highest mean final success reaches
     dense's. ``faster``: none does, but one has a larger curve area than dense (it learns
@@ -114,15 +119,32 @@ def shaping_outcome(rows: Sequence[Mapping[str, Any]]) -> ShapingOutcome:
         "reaches dense: plan-distance/stages's mean success 0.94 against dense's 0.94 at \
 equal budget"
     """
+    status, entry, text = _judged(rows)
+    row = next((r for r in rows if r["entry"] == entry), None)
+    if row is None:
+        return ShapingOutcome(status, entry, text)
+    p = (
+        _value(row, "p_improve_dense"),
+        _value(row, "p_improve_dense_low"),
+        _value(row, "p_improve_dense_high"),
+    )
+    if not math.isnan(p[0]):
+        text += f"; P({entry} > dense) {p[0]:.2f}"
+        text += "" if math.isnan(p[1]) else f" [{p[1]:.2f}, {p[2]:.2f}]"
+    return ShapingOutcome(status, entry, text, p)
+
+
+def _judged(rows: Sequence[Mapping[str, Any]]) -> tuple[Status, str | None, str]:
+    """:func:`shaping_outcome`'s status, entry and sentence, before the probability."""
     dense = next((r for r in rows if r["entry"] == DENSE), None)
     planned = [r for r in rows if planning_derived(r)]
     if dense is None or not planned:
         missing = "dense" if dense is None else "planning-derived"
-        return ShapingOutcome("none", None, f"no {missing} entry to compare")
+        return "none", None, f"no {missing} entry to compare"
     success, area = _value(dense, "success_mean"), _value(dense, "curve_area_mean")
     final = _best(planned, "success_mean")
     if final is not None and _value(final, "success_mean") >= success - _TIE:
-        return ShapingOutcome(
+        return (
             "at-least-dense",
             str(final["entry"]),
             f"reaches dense: {final['entry']}'s mean success "
@@ -135,7 +157,7 @@ equal budget"
     )
     faster = _best(planned, "curve_area_mean")
     if faster is not None and _value(faster, "curve_area_mean") > area + _TIE:
-        return ShapingOutcome(
+        return (
             "faster",
             str(faster["entry"]),
             "learns faster, ends lower: no planning-derived entry reaches dense's mean success "
@@ -147,7 +169,7 @@ equal budget"
         if faster is None
         else f"best {faster['entry']} {_value(faster, 'curve_area_mean'):.2f}"
     )
-    return ShapingOutcome(
+    return (
         "below-dense",
         None if final is None else str(final["entry"]),
         "below dense: no planning-derived entry reaches dense's mean success at this budget "

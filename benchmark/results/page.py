@@ -133,8 +133,10 @@ HOW_TO_READ = (
     "**Shaping outcome**: whether a planning-derived potential (any shaped entry but the "
     "control `goal-distance`) reaches dense's mean final success at equal budget (*at least "
     "dense*), or, where none does, has the larger curve area (*faster*: it learns faster and "
-    "ends lower), or neither (*below dense*). Only a cell whose budget check *decides* can "
-    "show whether shaping helps.",
+    "ends lower), or neither (*below dense*); **P(entry > dense)** is the probability that a "
+    "run of that entry ends with a higher success rate than a dense run (ties count half), "
+    "with its interval: how much the seeds say about the difference. Only a cell whose budget "
+    "check *decides* can show whether shaping helps.",
 )
 
 

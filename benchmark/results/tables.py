@@ -295,7 +295,15 @@ def aggregate_table(rows: Iterable[Summary]) -> Table:
     return _cells_table(_AGGREGATE_HEADINGS, (_aggregate_cells(r) for r in ranked_aggregate(rows)))
 
 
-_VERDICT_HEADINGS = ("Task", "Algorithm", "Budget", "Budget check", "Shaping outcome", "Entry")
+_VERDICT_HEADINGS = (
+    "Task",
+    "Algorithm",
+    "Budget",
+    "Budget check",
+    "Shaping outcome",
+    "Entry",
+    f"P(entry > dense) {CI_LABEL}",
+)
 
 
 def _words(status: str) -> str:
@@ -308,9 +316,11 @@ def verdict_table(checks: Iterable[Mapping[str, Any]]) -> Table:
 
     Example:
         >>> table = verdict_table([{"task": "planshape/Reach-v1", "algo": "PPO", "budget": 4096,
-        ...     "status": "decides", "outcome": "at-least-dense", "outcome_entry": "plan/grid"}])
+        ...     "status": "decides", "outcome": "at-least-dense", "outcome_entry": "plan/grid",
+        ...     "outcome_p_improve_dense": 0.6, "outcome_p_improve_dense_low": 0.3,
+        ...     "outcome_p_improve_dense_high": 0.9}])
         >>> [cell.text for cell in table.rows[0]]
-        ['Reach-v1', 'PPO', '4,096', 'decides', 'at least dense', 'plan/grid']
+        ['Reach-v1', 'PPO', '4,096', 'decides', 'at least dense', 'plan/grid', '0.60 [0.30, 0.90]']
     """
     rows = (
         (
@@ -320,6 +330,7 @@ def verdict_table(checks: Iterable[Mapping[str, Any]]) -> Table:
             Cell(_words(c["status"])),
             Cell(_words(c["outcome"])),
             Cell(c["outcome_entry"] or "—", code=c["outcome_entry"] is not None),
+            _interval_cell(c, "outcome_p_improve_dense", 2),
         )
         for c in checks
     )

@@ -150,7 +150,8 @@ def budget_checks(summary: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
     :func:`~planshape.results.cells.summarize`, grouped as the leaderboard groups them), sorted
     by task and algorithm: ``task``, ``algo``, ``budget``, ``status``, ``text``, and the cell's
     shaping outcome (:func:`~planshape.results.outcome.shaping_outcome`): ``outcome``,
-    ``outcome_entry``, ``outcome_text``.
+    ``outcome_entry``, ``outcome_text`` and ``outcome_p_improve_dense`` (with ``_low`` and
+    ``_high``).
 
     Example:
         >>> rows = [
@@ -174,6 +175,17 @@ def budget_checks(summary: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
                     "outcome": outcome.status,
                     "outcome_entry": outcome.entry,
                     "outcome_text": outcome.text,
+                    **dict(
+                        zip(
+                            (
+                                "outcome_p_improve_dense",
+                                "outcome_p_improve_dense_low",
+                                "outcome_p_improve_dense_high",
+                            ),
+                            outcome.p_improve_dense,
+                            strict=True,
+                        )
+                    ),
                 }
             )
     return checks

@@ -142,3 +142,27 @@ def test_the_printed_summary_gives_each_cells_outcome():
     printed = summary_table(_deciding_rows(), reps=50)
     assert "shaping outcome: reaches dense: plan-distance/grid's" in printed
     assert "shaping outcome: below dense" in printed
+
+
+def test_each_cell_gives_its_probability_of_beating_dense():
+    """P(entry > dense) over runs (ties count half), counted independently here."""
+    from planshape.results.cells import summarize
+
+    plan, dense = [1.0, 0.0, 0.5, 1.0, 0.5], [0.5, 0.5, 1.0, 0.0, 0.5]
+    rows = []
+    for seed in range(5):
+        rows += make_run(seed=seed, final_success=0.0)
+        rows += make_run(entry="dense", seed=seed, final_success=dense[seed])
+        rows += make_run(entry="plan-path/grid", seed=seed, final_success=plan[seed])
+    pairs = [(x > y) + 0.5 * (x == y) for x in plan for y in dense]
+    summary = summarize(rows, reps=200)
+    shaped = next(r for r in summary if r["entry"] == "plan-path/grid")
+    assert shaped["p_improve_dense"] == pytest.approx(sum(pairs) / len(pairs))
+    assert shaped["p_improve_dense_low"] <= shaped["p_improve_dense"]
+    assert shaped["p_improve_dense"] <= shaped["p_improve_dense_high"]
+    result = shaping_outcome(summary)
+    assert result.status == "at-least-dense"  # equal means: 0.6 each
+    assert result.p_improve_dense[0] == shaped["p_improve_dense"]
+    assert f"; P(plan-path/grid > dense) {shaped['p_improve_dense']:.2f} [" in result.text
+    # dense against itself: every pair of runs is as likely to go either way
+    assert next(r for r in summary if r["entry"] == "dense")["p_improve_dense"] == 0.5
