@@ -37,7 +37,6 @@ from planshape.results.cells import DENSE, REFERENCE_ENTRIES
 
 __all__ = [
     "CONTROL_POTENTIALS",
-    "OUTCOMES",
     "ShapingOutcome",
     "planning_derived",
     "shaping_outcome",
@@ -47,20 +46,16 @@ __all__ = [
 #: shaped entries that are not planning-derived: the dense reward's distance as a potential
 CONTROL_POTENTIALS: tuple[str, ...] = ("goal-distance",)
 
+#: ``at-least-dense``: a planning-derived entry reaches dense's mean success at equal budget;
+#: ``faster``: none does, but one has the larger curve area; ``below-dense``: neither;
+#: ``none``: no dense or no planning-derived entry to compare
 Status = Literal["at-least-dense", "faster", "below-dense", "none"]
-#: every status, with what it means in a few words (the leaderboard's verdict table)
-OUTCOMES: dict[str, str] = {
-    "at-least-dense": "a planning-derived entry reaches dense's mean success at equal budget",
-    "faster": "none reaches it, but one has the larger curve area",
-    "below-dense": "below dense in final success and in curve area",
-    "none": "no dense or no planning-derived entry to compare",
-}
 #: the tolerance of "reaches": means over seeds of rates over episodes are sums of fractions
 _TIE = 1e-9
 
 
 class ShapingOutcome(NamedTuple):
-    """One cell's answer: ``status`` (a key of :data:`OUTCOMES`), the planning-derived
+    """One cell's answer: ``status`` (one of :data:`Status`), the planning-derived
     ``entry`` that gives it (None with ``"none"``), the sentence that says why (``text``) and
     that entry's probability of ending with a higher success rate than a dense run, with its
     interval (``p_improve_dense``: value, low, high; NaN where unknown): how much 5 seeds say

@@ -166,6 +166,7 @@ def budget_checks(summary: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
     for task, by_algo in by_task_and_algo(summary).items():
         for algo, rows in by_algo.items():
             outcome = shaping_outcome(rows)
+            p, low, high = outcome.p_improve_dense
             checks.append(
                 {
                     "task": task,
@@ -175,17 +176,9 @@ def budget_checks(summary: Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
                     "outcome": outcome.status,
                     "outcome_entry": outcome.entry,
                     "outcome_text": outcome.text,
-                    **dict(
-                        zip(
-                            (
-                                "outcome_p_improve_dense",
-                                "outcome_p_improve_dense_low",
-                                "outcome_p_improve_dense_high",
-                            ),
-                            outcome.p_improve_dense,
-                            strict=True,
-                        )
-                    ),
+                    "outcome_p_improve_dense": p,
+                    "outcome_p_improve_dense_low": low,
+                    "outcome_p_improve_dense_high": high,
                 }
             )
     return checks
