@@ -34,6 +34,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any, Literal, NamedTuple
 
 from planshape.results.cells import DENSE, REFERENCE_ENTRIES
+from planshape.results.tables import short_task
 
 __all__ = [
     "CONTROL_POTENTIALS",
@@ -172,10 +173,6 @@ def _judged(rows: Sequence[Mapping[str, Any]]) -> tuple[Status, str | None, str]
     )
 
 
-def _cell_name(check: Mapping[str, Any]) -> str:
-    return f"{str(check['task']).split('/', 1)[-1]} {check['algo']}"
-
-
 def tally(checks: Sequence[Mapping[str, Any]]) -> str:
     """The outcomes of the cells whose budget check *decides*, counted in one sentence, from
     :func:`planshape.results.verdict.budget_checks` (each with ``task``, ``algo``, ``status``
@@ -205,7 +202,7 @@ below dense in 1 (Push-v1 PPO). The 1 other cell cannot show whether shaping hel
         return f"No cell's budget check decides: no outcome here shows whether shaping helps.{rest}"
 
     def counted(status: str) -> str:
-        names = [_cell_name(c) for c in deciding if c["outcome"] == status]
+        names = [f"{short_task(c['task'])} {c['algo']}" for c in deciding if c["outcome"] == status]
         return f"{len(names)} ({', '.join(names)})" if names else "0"
 
     cells = f"{len(deciding)} cell{'' if len(deciding) == 1 else 's'}"

@@ -24,9 +24,9 @@ from pathlib import Path
 from typing import Any, ClassVar, Literal
 
 from planshape.results import tables
-from planshape.results.outcome import shaping_outcome, tally
+from planshape.results.outcome import tally
 from planshape.results.tables import Table
-from planshape.results.verdict import budget_check, budget_checks
+from planshape.results.verdict import budget_checks
 
 __all__ = [
     "ACROSS",
@@ -177,10 +177,9 @@ def _across_tasks(
     return blocks + _figures(figures.get(ACROSS, []), out_dir)
 
 
-def _verdicts(summary: Sequence[Mapping[str, Any]]) -> list[Block]:
+def _verdicts(checks: Sequence[Mapping[str, Any]]) -> list[Block]:
     """Every cell's budget check and shaping outcome in one table, under the count of what the
     deciding cells show."""
-    checks = budget_checks(summary)
     if not checks:
         return []
     return [Heading(2, "Verdicts"), Paragraph(tally(checks)), tables.verdict_table(checks)]
@@ -200,15 +199,17 @@ def _measure_note(ranked: Sequence[Mapping[str, Any]]) -> str:
 def _task(
     task: str,
     by_algo: Mapping[str, Sequence[Mapping[str, Any]]],
+    checks: Mapping[tuple[str, str], Mapping[str, Any]],
     figures: Sequence[tuple[str, Path]],
     out_dir: Path,
 ) -> list[Block]:
     blocks: list[Block] = [Heading(2, task, anchor=tables.slug(task))]
     for algo, ranked in by_algo.items():
+        check = checks[task, algo]
         blocks += [
             Heading(3, f"{algo} — budget {ranked[0]['budget']:,} steps"),
-            Paragraph(f"**Budget check**: {budget_check(ranked).text}{_measure_note(ranked)}"),
-            Paragraph(f"**Shaping outcome**: {shaping_outcome(ranked).text}"),
+            Paragraph(f"**Budget check**: {check['text']}{_measure_note(ranked)}"),
+            Paragraph(f"**Shaping outcome**: {check['outcome_text']}"),
             tables.task_table(ranked),
         ]
     return blocks + _figures(figures, out_dir)
@@ -227,12 +228,14 @@ def build_page(
     across-task tables (with more than one task); per task, a ranked table per algorithm under
     its budget check and shaping outcome, and its figures (plots and policy videos, in
     ``figures`` by task); the hyperparameters."""
-    blocks = _setup(header, info, reps) + _verdicts(summary)
+    checks = budget_checks(summary)
+    by_cell = {(c["task"], c["algo"]): c for c in checks}
+    blocks = _setup(header, info, reps) + _verdicts(checks)
     by_task = tables.by_task_and_algo(summary)
     if len(by_task) > 1 and overall:
         blocks += _across_tasks(overall, figures, out_dir)
     for task, by_algo in by_task.items():
-        blocks += _task(task, by_algo, figures.get(task, []), out_dir)
+        blocks += _task(task, by_algo, by_cell, figures.get(task, []), out_dir)
     if info["hyperparameters"]:
         blocks += [
             Heading(2, "Hyperparameters", only="markdown"),

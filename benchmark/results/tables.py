@@ -46,6 +46,7 @@ __all__ = [
     "packages_text",
     "ranked_aggregate",
     "setup_table",
+    "short_task",
     "slug",
     "task_table",
     "verdict_table",
@@ -271,7 +272,13 @@ _AGGREGATE_HEADINGS = (
 )
 
 
-def _short_task(task: str) -> str:
+def short_task(task: str) -> str:
+    """A task id without its namespace.
+
+    Example:
+        >>> short_task("planshape/Reach-v1")
+        'Reach-v1'
+    """
     return task.split("/", 1)[-1]
 
 
@@ -285,7 +292,7 @@ def _aggregate_cells(row: Summary) -> tuple[Cell, ...]:
         _interval_cell(row, "normalized_distance_iqm", 2),
         _interval_cell(row, "p_improve", 2),
         _number_cell(row, "curve_area_mean"),
-        Cell(", ".join(_short_task(t) for t in excluded) or "none"),
+        Cell(", ".join(short_task(t) for t in excluded) or "none"),
         Cell(row["invariance"]),
     )
 
@@ -324,7 +331,7 @@ def verdict_table(checks: Iterable[Mapping[str, Any]]) -> Table:
     """
     rows = (
         (
-            Cell(_short_task(c["task"])),
+            Cell(short_task(c["task"])),
             Cell(c["algo"]),
             Cell(f"{c['budget']:,}", float(c["budget"])),
             Cell(_words(c["status"])),
