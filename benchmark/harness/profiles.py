@@ -815,8 +815,7 @@ METAWORLD_PROFILE = Profile(
         "profiles): at each, dense's deterministic success on seed 0 has reached 0.8; over 5 "
         "seeds dense ends short of 0.8 at the episode's end on button-press (0.62), reach-v4 "
         "(0.56) and window-close (0.66), and reaches it at any step on window-close (0.90), "
-        "button-press (0.96) and reach-v4 (0.94; that cell's other runs predate the count, "
-        "so it is shown at the end)",
+        "button-press (0.96) and reach-v4 (0.94)",
         "each evaluation point runs 10 deterministic episodes from starts drawn from fixed "
         "seeds; MetaWorld episodes are 500 steps and never terminate",
         f"every potential's φ is multiplied by shaping_scale = 1/(1 − γ) = {SHAPING_SCALE:g}, "
