@@ -18,6 +18,7 @@ Example:
 from __future__ import annotations
 
 import io
+import textwrap
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -34,6 +35,7 @@ __all__ = [
     "plot_probability_of_improvement",
     "save_png",
     "style",
+    "suptitle",
 ]
 
 #: Okabe & Ito's colour-blind-safe palette, one colour per potential family
@@ -53,6 +55,9 @@ _OTHER_COLORS = ("#332288", "#117733", "#882255", "#44AA99", "#AA4499", "#DDCC77
 _LINESTYLES = {"single": ":", "multi": "--", "grid": "-", "grid-diagonal": "-.", "stages": "-"}
 _MARKERS = {"single": "^", "multi": "s", "grid": "o", "grid-diagonal": "D", "stages": "o"}
 _DPI = 110
+#: characters of a figure title per inch of figure width (DejaVu Sans at matplotlib's "large",
+#: 12 pt, averages about 0.09 in a character; a little less, so that a line never overflows)
+_TITLE_CHARS_PER_INCH = 9.5
 
 
 def style(entry: str) -> dict[str, Any]:
@@ -75,6 +80,33 @@ def save_png(fig: Any, path: Path, dpi: int = _DPI) -> Path:
     buffer = io.BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi, metadata={"Software": None})
     return write_atomic(path, buffer.getvalue())
+
+
+def suptitle(fig: Any, text: str) -> Any:
+    """Give ``fig`` the title ``text``, wrapped to the figure's width (each of its own lines
+    separately), so that no title runs past the edges of the saved image; returns the title's
+    matplotlib ``Text``. Lines break between words; a word too long for a line of its own (a
+    long task id) also breaks at its hyphens.
+
+    Example:
+        >>> from matplotlib.figure import Figure
+        >>> fig = Figure(figsize=(3.5, 2.0))
+        >>> title = suptitle(fig, "planshape/MetaWorld-reach-v4: final distance to the goal")
+        >>> print(title.get_text())
+        planshape/MetaWorld-reach-v4:
+        final distance to the goal
+    """
+    width = max(int(fig.get_figwidth() * _TITLE_CHARS_PER_INCH), 20)
+    lines: list[str] = []
+    for line in text.split("\n"):
+        for wrapped in textwrap.wrap(
+            line, width, break_long_words=False, break_on_hyphens=False
+        ) or [""]:
+            fits = len(wrapped) <= width
+            lines.extend(
+                [wrapped] if fits else textwrap.wrap(wrapped, width, break_long_words=False)
+            )
+    return fig.suptitle("\n".join(lines))
 
 
 def _ranked(rows: Sequence[Mapping[str, Any]], column: str) -> list[Mapping[str, Any]]:
@@ -130,7 +162,7 @@ def plot_interval_estimates(overall: Sequence[Mapping[str, Any]], path: Path) ->
             ax.tick_params(labelsize=7)
     for ax in grid[-1]:
         ax.set_xlabel("normalized success (0 = sparse, 1 = dense)", fontsize=8)
-    fig.suptitle("Aggregate interval estimates over tasks (95% stratified bootstrap CIs)")
+    suptitle(fig, "Aggregate interval estimates over tasks (95% stratified bootstrap CIs)")
     return save_png(fig, path)
 
 
@@ -178,7 +210,7 @@ def plot_performance_profiles(
                 handles.append(h)
                 labels.append(label)
     fig.legend(handles, labels, loc="outside right center", fontsize=7)
-    fig.suptitle("Performance profiles over tasks (95% stratified bootstrap bands)")
+    suptitle(fig, "Performance profiles over tasks (95% stratified bootstrap bands)")
     return save_png(fig, path)
 
 
@@ -222,5 +254,5 @@ def plot_probability_of_improvement(
         ax.set_yticks(y, [r["entry"] for r in ranked], fontsize=7)
         ax.set_title(f"{algo}: P(improvement)  ○ over sparse  ● over dense", fontsize=9)
         ax.set_xlabel("probability that a run of the entry ends with higher success")
-    fig.suptitle("Probability of improvement, pooled over tasks (95% stratified bootstrap CIs)")
+    suptitle(fig, "Probability of improvement, pooled over tasks (95% stratified bootstrap CIs)")
     return save_png(fig, path)

@@ -28,7 +28,7 @@ import numpy as np
 
 from planshape.results import figures
 from planshape.results.cells import DENSE, SPARSE, normalized_scores, run_curves
-from planshape.results.figures import save_png, style
+from planshape.results.figures import save_png, style, suptitle
 from planshape.results.page import ACROSS
 from planshape.results.stats import learning_curve
 from planshape.results.tables import by_task_and_algo, entry_order, slug
@@ -129,9 +129,10 @@ def _plot_curves(
         ax.set_ylabel("success rate", fontsize=8)
     for ax in grid[-1]:
         ax.set_xlabel("environment steps", fontsize=8)
-    fig.suptitle(
-        f"{task}: success rate during training (mean over seeds, 95% bootstrap CI; "
-        "sparse black, dense grey)"
+    suptitle(
+        fig,
+        f"{task}: success rate during training\n(mean over seeds, 95% bootstrap CI; "
+        "sparse black, dense grey)",
     )
     save_png(fig, path, dpi=_DPI)
 
@@ -147,7 +148,7 @@ def _plot_final_distance(
 
     algos = sorted(rows_by_algo)
     width = max(len(rows) for rows in rows_by_algo.values())
-    fig = Figure(figsize=(max(3.0, 0.45 * width + 1.2) * len(algos), 3.6), layout="constrained")
+    fig = Figure(figsize=(max(4.0, 0.45 * width + 1.2) * len(algos), 3.6), layout="constrained")
     axes = fig.subplots(1, len(algos), sharey=True, squeeze=False)[0]
     for ax, algo in zip(axes, algos, strict=True):
         by_entry = {r["entry"]: r for r in rows_by_algo[algo]}
@@ -183,9 +184,10 @@ def _plot_final_distance(
         ax.set_title(algo)
         ax.grid(axis="x", visible=False)
     axes[0].set_ylabel("final distance to goal (m)")
-    fig.suptitle(
+    suptitle(
+        fig,
         f"{task}: final distance to the goal\n(lower is better; bars: mean over seeds with 95% "
-        "bootstrap CI; points: each seed)"
+        "bootstrap CI; points: each seed)",
     )
     save_png(fig, path, dpi=_DPI)
 
