@@ -778,12 +778,8 @@ _METAWORLD_SAC_EVAL_EVERY = 20_000
 #: expert φ rises over that step by 17 % and 18 % of what the drawer's and window's travel is
 #: worth, and by 22 % of the button's while it is pressed in; README) and ``plan-distance-sum``
 #: measures the object too (≥ 90 %; tests/tasks/test_metaworld.py). On reach-v4 they are equal.
-#: Measured (5 seeds each, leaderboard/metaworld): on button-press the sum leaves the button
-#: untouched on 2 seeds, not 4, and ends at mean success 0.52 against plan-distance's 0.18 at
-#: any step (dense 0.96); on drawer-close 0.80 against 0.94 at the episode's end (dense 0.94);
-#: curve areas level (0.19 and 0.19; 0.62 and 0.63). On window-close the sum reaches dense and
-#: learns faster: 0.98 against plan-distance's 0.64 (dense 0.90), curve area 0.63 against 0.47
-#: (dense 0.36).
+#: What the 5-seed runs measured is on leaderboard/metaworld and in the README ("MetaWorld with
+#: SAC"), derived from the stored runs, not copied here.
 METAWORLD_OBJECT_TASKS = tuple(t for t in METAWORLD_SAC_BUDGETS if "reach" not in t)
 
 METAWORLD_PROFILE = Profile(
