@@ -856,10 +856,16 @@ INSTANCE_POTENTIALS = ("plan-based", "time-varying", "plan-distance")
 #: instances at every point on seeds 0-1 (final distance 0.20-0.21 m, stuck at the wall as on
 #: the fixed task), plan-distance/grid 0.00 at every point but seed 1's last (0.04), and
 #: plan-based/grid 0.20, 0.12, 0.00 at the fixed task's 122,880 and 0.42, 0.22, 0.28 at 245,760
-#: (seeds 0-2; seed 0 from 98,304 on between 0.12 and 0.42, seed 2 still rising). No entry
-#: solves the distribution (IQM >= 0.9) within a budget this machine affords; 245,760 is where
-#: a planning-derived potential solves a fifth to two fifths of the unseen instances and dense
-#: none, so the maze distribution trains twice the fixed task's PPO budget.
+#: (seeds 0-2; seed 0 from 98,304 on between 0.12 and 0.42, seed 2 still rising). 245,760 is
+#: where a planning-derived potential solves a fifth to two fifths of the unseen instances and
+#: dense none, so the maze distribution trains twice the fixed task's PPO budget. Four times
+#: that budget would not make the cell decide (``--budget 983040 --chunks 8``, held-out success
+#: at 122,880 ... 983,040): plan-based/grid seed 0 0.20 0.42 0.60 0.60 0.58 0.66 0.62 0.62, seed
+#: 2 0.00 0.28 0.74 0.72 0.94 0.84 0.84 0.78; time-varying/grid seed 1 0.60 0.78 0.84 0.90 0.90
+#: 0.92 0.88 0.90, seeds 0 and 2 0.00 at every point (the hand drifts away: training distance
+#: 0.33 m rising to 0.39-0.41 m); and sparse catches up, seed 3 0.00 0.40 0.72 0.80 0.88 0.88
+#: 0.88 0.88, seed 0 0.00 0.00 0.02 0.10 0.10 0.14 0.18 0.22. No shaped entry nears a mean of
+#: 0.8 while sparse's best seed passes it, so more budget buys sparse more than the potentials.
 #: SBX-SAC on the reach distribution (``planshape probe planshape/ReachRandomized-v1 dense
 #: --algo SBX-SAC --budget 300000 --chunks 10``, seed 0): dense solves 0.00 of the held-out
 #: instances up to 90,000 (the fixed task's budget is 100,000), then 0.06, 0.20, 0.34, 0.54,
