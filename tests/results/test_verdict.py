@@ -25,7 +25,7 @@ def _cell(seeds: int = 5, **success: float) -> list[dict[str, object]]:
         (_cell(sparse=0.0, dense=SOLVED, plan_grid=0.0), "decides"),
         # maze-reach: dense trapped by design, a shaped entry solves it, sparse does not
         (_cell(sparse=0.0, dense=0.0, plan_grid=1.0), "decides"),
-        # drawer-close: sparse solves it too
+        # drawer-close counted at the episode's end: sparse solves it too
         (_cell(sparse=0.88, dense=0.94, plan_stages=0.94), "separates-little"),
         (_cell(sparse=0.9, dense=0.1, plan_grid=1.0), "separates-little"),
         # button-press, push with PPO at 81,920 steps: nothing solves it
