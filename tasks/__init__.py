@@ -266,7 +266,10 @@ register_task(
         id="planshape/MetaWorld-button-press-topdown-v3",
         family="MetaWorld",
         env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
-        models={"stages": "planshape.tasks.metaworld.button:topdown_stages"},
+        models={
+            "stages": "planshape.tasks.metaworld.button:topdown_stages",
+            "stages-above": "planshape.tasks.metaworld.button:topdown_stages_above",
+        },
         max_episode_steps=500,
         description="MetaWorld button-press-topdown-v3: press a button down from above",
         kwargs={"env_name": "button-press-topdown-v3"},

@@ -13,6 +13,15 @@ Thresholds:
 * ``pressed``: the button's face is within ``TOPDOWN_DEPTH`` = 2.4 cm (height) or
   ``FRONT_DEPTH`` = 2 cm (y) of the goal: MetaWorld's success tests.
 
+Two geometries place ``(hand-above)`` for the plan-distance potentials. ``stages`` places only
+the hand's horizontal offset from the button, so its target is not a place where the predicate
+holds: the hand starts 11 cm below the button's top, and moved straight towards the button's x
+and y it stops 13.6 cm short of it against the button's box, below its top, where no horizontal
+move brings it nearer. ``stages-above`` places the hand at ``ABOVE_OFFSET`` = (0, 0, 4.5) cm from
+the button's top, where MetaWorld's scripted expert holds it while it presses (hand minus
+button (0.00, 0.01, 0.045) m at its success, seeds 0–2), so the predicate holds at the target
+and the offset stays put while the button goes down.
+
 Example:
     >>> import numpy as np
     >>> from planshape.tasks.metaworld import observation as o
@@ -20,6 +29,9 @@ Example:
     >>> obs[o.GOAL] = (0.0, 0.8, 0.215)
     >>> bool(hand_above(obs, "gripper", "button")), bool(pressed_down(obs, "button"))
     (True, False)
+    >>> obs[o.HAND] = obs[o.OBJECT] + ABOVE_OFFSET  # the target of ``stages-above``
+    >>> bool(hand_above(obs, "gripper", "button")), hand_to_above_top(obs).tolist()
+    (True, [0.0, 0.0, 0.0])
 """
 
 from __future__ import annotations
@@ -34,6 +46,7 @@ from planshape.tasks.metaworld.observation import distance, goal, hand, main_obj
 ABOVE_XY = 0.04
 FRONT_XZ = 0.03
 FRONT_OFFSET = np.array([0.0, 0.0, -0.07])
+ABOVE_OFFSET = np.array([0.0, 0.0, 0.045])
 TOPDOWN_DEPTH = 0.024
 FRONT_DEPTH = 0.02
 
@@ -68,6 +81,12 @@ def hand_over_button(obs: np.ndarray) -> np.ndarray:
     return hand(obs)[..., :2] - main_object(obs)[..., :2]
 
 
+def hand_to_above_top(obs: np.ndarray) -> np.ndarray:
+    """Hand minus the point ``ABOVE_OFFSET`` over the button's top (where the topdown expert
+    presses from)."""
+    return hand(obs) - (main_object(obs) + ABOVE_OFFSET)
+
+
 def hand_to_front(obs: np.ndarray) -> np.ndarray:
     """Hand minus the point where the front expert lines the hand up."""
     return hand(obs) - (main_object(obs) + FRONT_OFFSET)
@@ -84,7 +103,8 @@ def button_depth_to_goal(obs: np.ndarray) -> np.ndarray:
 
 
 def topdown_stages() -> AbstractModel:
-    """button-press-topdown: move over the button, press it down."""
+    """button-press-topdown: move over the button, press it down (the hand placed horizontally
+    only)."""
     return AbstractModel(
         domain=pddl_file("metaworld", "button-press-topdown", "domain.pddl"),
         problem=pddl_file("metaworld", "button-press-topdown", "stages.pddl"),
@@ -96,6 +116,26 @@ def topdown_stages() -> AbstractModel:
             },
             targets={
                 "hand-above": ("hand-over-button", (0.0, 0.0)),
+                "pressed": ("button-to-goal", (0.0,)),
+            },
+        ),
+    )
+
+
+def topdown_stages_above() -> AbstractModel:
+    """button-press-topdown: move over the button, press it down, the hand placed in three
+    dimensions above the button's top (the same PDDL and classifiers as ``stages``)."""
+    return AbstractModel(
+        domain=pddl_file("metaworld", "button-press-topdown", "domain.pddl"),
+        problem=pddl_file("metaworld", "button-press-topdown", "stages.pddl"),
+        classifiers={"hand-above": hand_above, "pressed": pressed_down},
+        geometry=DisplacementGeometry(
+            displacements={
+                "hand-to-above-top": hand_to_above_top,
+                "button-to-goal": button_height_to_goal,
+            },
+            targets={
+                "hand-above": ("hand-to-above-top", (0.0, 0.0, 0.0)),
                 "pressed": ("button-to-goal", (0.0,)),
             },
         ),

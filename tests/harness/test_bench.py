@@ -283,10 +283,20 @@ def test_the_metaworld_profile_evaluates_where_its_budget_probes_did():
         "plan-based/stages",
         "plan-distance/stages",
         "plan-distance-sum/stages",
+        "plan-distance/stages-above",
+        "plan-distance-sum/stages-above",
     }
     # plan-distance-sum only where the plan places an object: on reach-v4 it is plan-distance
     summed = {k.task for k in keys if k.entry == "plan-distance-sum/stages"}
     assert summed == set(METAWORLD_SAC_BUDGETS) - {"planshape/MetaWorld-reach-v4"}
+    # the second geometry only on button-press-topdown, and only for the distance potentials
+    # (plan-based reads no geometry: on it plan-based would repeat plan-based/stages)
+    above = {(k.task, k.entry) for k in keys if k.entry.endswith("/stages-above")}
+    topdown = "planshape/MetaWorld-button-press-topdown-v3"
+    assert above == {
+        (topdown, "plan-distance/stages-above"),
+        (topdown, "plan-distance-sum/stages-above"),
+    }
 
 
 def test_the_metaworld_profile_holds_at_least_four_distinct_tasks():

@@ -184,10 +184,12 @@ def test_geometry_locates_every_subgoal_and_drives_distance_potentials(task_id: 
     assert math.isfinite(info["shaping"])
 
 
-def _expert_rollout(task_id: str) -> tuple[gymnasium.Env, list[np.ndarray], list[int]]:
+def _expert_rollout(
+    task_id: str, model: str | None = None
+) -> tuple[gymnasium.Env, list[np.ndarray], list[int]]:
     """The scripted expert's seeded episode up to MetaWorld's success: observations and the
-    shaping wrapper's plan progress at each."""
-    env = make(task_id, "shaped", potential="plan-distance")
+    shaping wrapper's plan progress at each (on ``model``, the task's default if None)."""
+    env = make(task_id, "shaped", potential="plan-distance", model=model)
     expert = ENV_POLICY_MAP[env_name(task_id)]()
     obs, info = env.reset(seed=0)
     observations, progress = [obs], [info["progress"]]
@@ -210,20 +212,29 @@ def _places_an_object(task_id: str) -> bool:
 
 
 OBJECT_TASKS = [t for t in CURRENT if _places_an_object(t)]
+TOPDOWN = "planshape/MetaWorld-button-press-topdown-v3"
+#: (task, model) pairs besides each task's default model whose plans place an object
+OTHER_OBJECT_MODELS = [(TOPDOWN, "stages-above")]
 
 
 @pytest.mark.filterwarnings("ignore:Constant\\(s\\) may be too high")
-@pytest.mark.parametrize("task_id", OBJECT_TASKS, ids=str)
-def test_plan_distance_sum_measures_the_object_the_last_step_moves(task_id: str) -> None:
+@pytest.mark.parametrize(
+    ("task_id", "model"), [(t, None) for t in OBJECT_TASKS] + OTHER_OBJECT_MODELS, ids=str
+)
+def test_plan_distance_sum_measures_the_object_the_last_step_moves(
+    task_id: str, model: str | None
+) -> None:
     """Over the plan step into the last subgoal (the hand already in place, the expert moving
     the object to its goal), ``plan-distance-sum`` rises by at least 0.9 of what the object's
     own travel is worth (its distance to its place, in steps, over n), where ``plan-distance``
     measures the hand's offset from a place that moves with the object and rises by less than
-    that (on button-press its rise is the hand's approach to the button, not the press)."""
+    that on each default model (on button-press its rise is the hand's approach to the button,
+    not the press; on button-press-topdown's ``stages-above`` the hand's descent onto the
+    button's top)."""
     from planshape.baselines.plan_distance import step_targets
     from planshape.shaping.potentials import ShapingContext, make_potential
 
-    env, observations, progress = _expert_rollout(task_id)
+    env, observations, progress = _expert_rollout(task_id, model)
     geometry = env.get_wrapper_attr("geometry")
     subgoals = env.get_wrapper_attr("progress").subgoals
     n = len(subgoals) - 1
@@ -244,8 +255,35 @@ def test_plan_distance_sum_measures_the_object_the_last_step_moves(task_id: str)
         r: phi(r, last, n) - phi(r, first, n - 1) for r in ("plan-distance-sum", "plan-distance")
     }
     assert rise["plan-distance-sum"] >= 0.9 * travel, (rise, travel)
-    if task_id != "planshape/MetaWorld-button-press-v3":
+    if model is None and task_id != "planshape/MetaWorld-button-press-v3":
         assert rise["plan-distance"] < 0.5 * travel, (rise, travel)
+
+
+def test_topdown_stages_above_targets_a_place_where_the_hand_is_above_the_button() -> None:
+    """``stages`` places only the hand's horizontal offset from the button: a hand moved
+    straight towards that target, at its starting height, stops against the button's box below
+    its top, where the predicate fails and no horizontal move brings it nearer.
+    ``stages-above`` places the hand over the top: at its target ``(hand-above)`` holds, and the
+    stuck hand is far from it."""
+    from planshape.shaping.registration import abstract_model
+    from planshape.tasks.metaworld.button import hand_above
+
+    env = make(TOPDOWN)
+    obs, _ = env.reset(seed=0)
+    spec = task_spec(TOPDOWN)
+    flat, above = (abstract_model(spec, m).geometry for m in ("stages", "stages-above"))
+    for _ in range(200):  # straight towards the button's x and y, at the starting height
+        action = np.zeros(4)
+        action[:2] = np.clip(-20 * flat.positions(obs)["hand-over-button"], -1, 1)
+        obs, *_ = env.step(action)
+    stuck_offset = np.linalg.norm(flat.positions(obs)["hand-over-button"])
+    assert stuck_offset > 0.1 and layout.hand(obs)[2] < layout.main_object(obs)[2]
+    assert not hand_above(obs, "gripper", "button")
+    assert np.linalg.norm(above.positions(obs)["hand-to-above-top"]) > stuck_offset
+    at_target = obs.copy()
+    at_target[layout.HAND] = layout.main_object(obs) + np.array([0.0, 0.0, 0.045])
+    assert hand_above(at_target, "gripper", "button")
+    np.testing.assert_allclose(above.positions(at_target)["hand-to-above-top"], 0.0, atol=1e-12)
 
 
 def test_the_metaworld_profile_sums_distances_exactly_where_the_plan_places_an_object() -> None:
