@@ -36,6 +36,8 @@ Example:
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from planshape.shaping.registration import AbstractModel
@@ -105,37 +107,27 @@ def button_depth_to_goal(obs: np.ndarray) -> np.ndarray:
 def topdown_stages() -> AbstractModel:
     """button-press-topdown: move over the button, press it down (the hand placed horizontally
     only)."""
-    return AbstractModel(
-        domain=pddl_file("metaworld", "button-press-topdown", "domain.pddl"),
-        problem=pddl_file("metaworld", "button-press-topdown", "stages.pddl"),
-        classifiers={"hand-above": hand_above, "pressed": pressed_down},
-        geometry=DisplacementGeometry(
-            displacements={
-                "hand-over-button": hand_over_button,
-                "button-to-goal": button_height_to_goal,
-            },
-            targets={
-                "hand-above": ("hand-over-button", (0.0, 0.0)),
-                "pressed": ("button-to-goal", (0.0,)),
-            },
-        ),
-    )
+    return _topdown("hand-over-button", hand_over_button, (0.0, 0.0))
 
 
 def topdown_stages_above() -> AbstractModel:
     """button-press-topdown: move over the button, press it down, the hand placed in three
     dimensions above the button's top (the same PDDL and classifiers as ``stages``)."""
+    return _topdown("hand-to-above-top", hand_to_above_top, (0.0, 0.0, 0.0))
+
+
+def _topdown(
+    hand_entity: str, hand_displacement: Callable[[np.ndarray], np.ndarray], at: tuple
+) -> AbstractModel:
+    """button-press-topdown's model with ``(hand-above)`` placed by ``hand_displacement``."""
     return AbstractModel(
         domain=pddl_file("metaworld", "button-press-topdown", "domain.pddl"),
         problem=pddl_file("metaworld", "button-press-topdown", "stages.pddl"),
         classifiers={"hand-above": hand_above, "pressed": pressed_down},
         geometry=DisplacementGeometry(
-            displacements={
-                "hand-to-above-top": hand_to_above_top,
-                "button-to-goal": button_height_to_goal,
-            },
+            displacements={hand_entity: hand_displacement, "button-to-goal": button_height_to_goal},
             targets={
-                "hand-above": ("hand-to-above-top", (0.0, 0.0, 0.0)),
+                "hand-above": (hand_entity, at),
                 "pressed": ("button-to-goal", (0.0,)),
             },
         ),
