@@ -117,7 +117,7 @@ def topdown_stages_above() -> AbstractModel:
 
 
 def _topdown(
-    hand_entity: str, hand_displacement: Callable[[np.ndarray], np.ndarray], at: tuple
+    hand_entity: str, hand_displacement: Callable[[np.ndarray], np.ndarray], at: tuple[float, ...]
 ) -> AbstractModel:
     """button-press-topdown's model with ``(hand-above)`` placed by ``hand_displacement``."""
     return AbstractModel(

@@ -266,7 +266,7 @@ def test_topdown_stages_above_targets_a_place_where_the_hand_is_above_the_button
     ``stages-above`` places the hand over the top: at its target ``(hand-above)`` holds, and the
     stuck hand is far from it."""
     from planshape.shaping.registration import abstract_model
-    from planshape.tasks.metaworld.button import hand_above
+    from planshape.tasks.metaworld.button import ABOVE_OFFSET, hand_above
 
     env = make(TOPDOWN)
     obs, _ = env.reset(seed=0)
@@ -281,7 +281,7 @@ def test_topdown_stages_above_targets_a_place_where_the_hand_is_above_the_button
     assert not hand_above(obs, "gripper", "button")
     assert np.linalg.norm(above.positions(obs)["hand-to-above-top"]) > stuck_offset
     at_target = obs.copy()
-    at_target[layout.HAND] = layout.main_object(obs) + np.array([0.0, 0.0, 0.045])
+    at_target[layout.HAND] = layout.main_object(obs) + ABOVE_OFFSET
     assert hand_above(at_target, "gripper", "button")
     np.testing.assert_allclose(above.positions(at_target)["hand-to-above-top"], 0.0, atol=1e-12)
 
