@@ -46,6 +46,15 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   200,000; training-episode success 0.75) and at 140,000 at 100 (0.5 from 40,000, 1.0 at 160,000
   and 200,000; training-episode success 0.95), against dense's 0.9 at 140,000: one seed, 100 no
   worse than 10, so the rule's scale stays where SAC's planar one is not shown to be better.
+  On window-open (240,000 steps), two stored runs at 100 that learned the task and lost it were
+  probed again at 10 (``planshape probe planshape/MetaWorld-window-open-v3 ENTRY --algo SBX-SAC
+  --seed S --budget 240000 --chunks 12 --shaping-scale 10``; success at any step of 10
+  episodes every 20,000 steps): plan-distance-sum/stages seed 2 reads 0.8 at 20,000, 1.0 from
+  60,000 but for 0.9 at 100,000 and 160,000-180,000, and ends at 1.0 (at 100: 0.2 at 200,000,
+  0.7 at the end); plan-distance/stages seed 4 reads 0.0 to 100,000, 1.0 from 140,000 but for
+  0.9 at 180,000 and 220,000, and ends at 1.0 (at 100: 1.0 at 160,000, 0.0 at the end). Two
+  seeds chosen for their collapse, not a test of the scale: the profile keeps 100 until 5
+  seeds of each shaped entry say otherwise.
 * ``rescale_observations`` (planar tables): the learner sees the observation mapped from its
   Box bounds onto [-1, 1] (:func:`planshape.harness.runner.learner_view`; the shaping still reads
   metres). The raw coordinates span a few tenths of a metre, on which a [64, 64] tanh MLP is
