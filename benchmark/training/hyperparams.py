@@ -52,9 +52,10 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   episodes every 20,000 steps): plan-distance-sum/stages seed 2 reads 0.8 at 20,000, 1.0 from
   60,000 but for 0.9 at 100,000 and 160,000-180,000, and ends at 1.0 (at 100: 0.2 at 200,000,
   0.7 at the end); plan-distance/stages seed 4 reads 0.0 to 100,000, 1.0 from 140,000 but for
-  0.9 at 180,000 and 220,000, and ends at 1.0 (at 100: 1.0 at 160,000, 0.0 at the end). Two
-  seeds chosen for their collapse, not a test of the scale: the profile keeps 100 until 5
-  seeds of each shaped entry say otherwise.
+  0.9 at 180,000 and 220,000, and ends at 1.0 (at 100: 1.0 at 160,000, 0.0 at the end).
+  plan-distance-sum/stages seeds 0 and 1, which end at 1.0 at 100, end at 1.0 at 10 too (seed
+  0 drops to 0.0 at 120,000 on the way). Seeds chosen for their collapse, not a test of the
+  scale: the profile keeps 100 until 5 seeds of each shaped entry say otherwise.
 * ``rescale_observations`` (planar tables): the learner sees the observation mapped from its
   Box bounds onto [-1, 1] (:func:`planshape.harness.runner.learner_view`; the shaping still reads
   metres). The raw coordinates span a few tenths of a metre, on which a [64, 64] tanh MLP is
