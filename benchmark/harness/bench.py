@@ -216,7 +216,6 @@ def selected_by(expression: str, key: Any) -> bool:
 def _dry_run(args: argparse.Namespace, profile: Any) -> int:
     """Print the runs the selection would train (not yet stored) and their estimated time."""
     from planshape.harness.estimate import estimate, render
-    from planshape.harness.runner import RunSpec
     from planshape.harness.store import ResultStore
     from planshape.suite.session import parse_seeds, resolve_tasks
 
@@ -228,9 +227,7 @@ def _dry_run(args: argparse.Namespace, profile: Any) -> int:
             seeds=parse_seeds(args.seeds),
             extra_potentials=args.potential,
         )
-        if not store.has(
-            RunSpec.create(key, profile.name, profile.eval_every, profile.eval_episodes).run_id
-        )
+        if not store.has(profile.spec(key).run_id)
     ]
     if args.k:
         keys = [key for key in keys if selected_by(args.k, key)]
@@ -258,7 +255,7 @@ def check_store(out: Path, profile: Profile, extra_potentials: Sequence[str] = (
         >>> import tempfile
         >>> check_store(Path(tempfile.mkdtemp()), get_profile("smoke"))  # an empty folder
     """
-    from planshape.harness.runner import EVAL_PROTOCOL, RunSpec
+    from planshape.harness.runner import EVAL_PROTOCOL
     from planshape.harness.store import ResultStore
 
     for folder in (out, *out.parents):
@@ -270,10 +267,7 @@ def check_store(out: Path, profile: Profile, extra_potentials: Sequence[str] = (
     stored = store.stored()
     if not stored:
         return
-    own = {
-        RunSpec.create(k, profile.name, profile.eval_every, profile.eval_episodes).run_id
-        for k in profile.runs(extra_potentials=extra_potentials)
-    }
+    own = {profile.spec(k).run_id for k in profile.runs(extra_potentials=extra_potentials)}
     found: dict[tuple[str, int], str] = {}
     for path in stored:
         first = store.read(path)[0]

@@ -41,17 +41,21 @@ Example:
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from planshape.errors import UnknownIdError
 from planshape.results.measure import SuccessMeasure, describe, measured
 from planshape.results.outcome import CONTROL_POTENTIALS
 from planshape.shaping.registration import task_spec
 from planshape.training.hyperparams import SAC_SHAPING_SCALE, SHAPING_SCALE
+
+if TYPE_CHECKING:
+    from planshape.harness.runner import RunSpec
 
 #: the folder under which every profile's results are stored
 RESULTS_ROOT = "leaderboard"
@@ -188,6 +192,10 @@ class Profile:
             (:mod:`planshape.results.measure`): ``"end"`` — the success flag on the episode's
             last step; ``"any-step"`` — at any step (MetaWorld's protocol). Only how stored
             rows are scored: it is no part of a run's id.
+        shaping_scale: φ's multiplier for every shaped run of the profile, in place of the
+            hyperparameter tables' (:mod:`planshape.training.hyperparams`); ``None`` keeps the
+            tables'. It is part of each shaped run's settings, so of its id; sparse and dense
+            runs have no scale, so they are the same runs (same ids) as another profile's.
     """
 
     name: str
@@ -198,12 +206,33 @@ class Profile:
     caveats: Sequence[str] = field(default_factory=tuple)
     archived: str = ""
     success_measure: SuccessMeasure = "end"
+    shaping_scale: float | None = None
 
     @property
     def folder(self) -> str:
         """Where its results are stored, relative to the repository root: ``leaderboard/`` for
         the default profile, ``leaderboard/<name>/`` for every other."""
         return RESULTS_ROOT if self.name == "default" else f"{RESULTS_ROOT}/{self.name}"
+
+    def spec(self, key: RunKey, invariance: str = "not-checked") -> RunSpec:
+        """The :class:`planshape.harness.runner.RunSpec` of one of its runs: the profile's
+        evaluation settings and, for a shaped entry, its :attr:`shaping_scale` if it has one.
+
+        Example:
+            >>> key = RunKey("planshape/Reach-v1", "dense", "PPO", 0, 4096)
+            >>> PROFILES["smoke"].spec(key).hyperparameters["n_envs"]
+            8
+        """
+        from planshape.harness.runner import RunSpec
+
+        return RunSpec.create(
+            key,
+            self.name,
+            self.eval_every,
+            self.eval_episodes,
+            invariance=invariance,
+            shaping_scale=self.shaping_scale,
+        )
 
     def runs(
         self,
@@ -357,16 +386,20 @@ class Profile:
         budgets = self.budgets()
         return [
             budgets.get((r["task"], r["algo"])) == int(r["budget"])
-            and r["hyperparameters"] == current_settings(r["task"], r["algo"], r["entry"])
+            and r["hyperparameters"]
+            == current_settings(r["task"], r["algo"], r["entry"], self.shaping_scale)
             for r in rows
         ]
 
 
 @cache
-def current_settings(task: str, algo: str, entry: str) -> dict[str, Any]:
+def current_settings(
+    task: str, algo: str, entry: str, shaping_scale: float | None = None
+) -> dict[str, Any]:
     """The settings a run of ``entry`` by ``algo`` on ``task`` trains with now
     (:func:`planshape.training.hyperparams.hyperparameters`, read once per process: the tables
-    are constants). Callers compare with it and must not change it.
+    are constants), with a profile's own ``shaping_scale`` if it has one. Callers compare with
+    it and must not change it.
 
     Example:
         >>> current_settings("planshape/Reach-v1", "PPO", "dense")["n_envs"]
@@ -374,7 +407,7 @@ def current_settings(task: str, algo: str, entry: str) -> dict[str, Any]:
     """
     from planshape.training.hyperparams import hyperparameters
 
-    return hyperparameters(task, algo, entry)
+    return hyperparameters(task, algo, entry, shaping_scale=shaping_scale)
 
 
 SMOKE = Profile(
@@ -813,6 +846,20 @@ METAWORLD_OBJECT_TASKS = tuple(t for t in METAWORLD_SAC_BUDGETS if "reach" not i
 #: stages-above would repeat plan-based/stages's numbers), so the profile runs those two on it.
 _TOPDOWN = "planshape/MetaWorld-button-press-topdown-v3"
 
+#: what the page of every SBX-SAC MetaWorld profile says about its budgets and evaluation
+_METAWORLD_SAC_CAVEATS = (
+    "budgets per task from SBX-SAC learning curves of the dense reward (planshape.harness."
+    "profiles): at each, dense's deterministic success on seed 0 has reached 0.8; over 5 "
+    "seeds dense ends short of 0.8 at the episode's end on button-press (0.62), reach-v4 "
+    "(0.56) and window-close (0.66), and reaches it at any step on window-close (0.90), "
+    "button-press (0.96) and reach-v4 (0.94); on drawer-close it reaches it both ways "
+    "(0.94 at the episode's end, 1.00 at any step); on button-press-topdown, whose budget "
+    "comes from an any-step curve, 0.88 at any step (0.60 at the episode's end); on "
+    "window-open, likewise, 0.94 at any step (0.76 at the episode's end)",
+    "each evaluation point runs 10 deterministic episodes from starts drawn from fixed "
+    "seeds; MetaWorld episodes are 500 steps and never terminate",
+)
+
 METAWORLD_PROFILE = Profile(
     name="metaworld",
     description=(
@@ -853,20 +900,36 @@ METAWORLD_PROFILE = Profile(
     eval_episodes=10,
     success_measure="any-step",
     caveats=(
-        "budgets per task from SBX-SAC learning curves of the dense reward (planshape.harness."
-        "profiles): at each, dense's deterministic success on seed 0 has reached 0.8; over 5 "
-        "seeds dense ends short of 0.8 at the episode's end on button-press (0.62), reach-v4 "
-        "(0.56) and window-close (0.66), and reaches it at any step on window-close (0.90), "
-        "button-press (0.96) and reach-v4 (0.94); on drawer-close it reaches it both ways "
-        "(0.94 at the episode's end, 1.00 at any step); on button-press-topdown, whose budget "
-        "comes from an any-step curve, 0.88 at any step (0.60 at the episode's end); on "
-        "window-open, likewise, 0.94 at any step (0.76 at the episode's end)",
-        "each evaluation point runs 10 deterministic episodes from starts drawn from fixed "
-        "seeds; MetaWorld episodes are 500 steps and never terminate",
+        *_METAWORLD_SAC_CAVEATS,
         f"every potential's φ is multiplied by shaping_scale = 1/(1 − γ) = {SHAPING_SCALE:g}, "
         f"not SAC's planar {SAC_SHAPING_SCALE:g}: on reach-v4 plan-distance/stages did no "
         f"worse at {SHAPING_SCALE:g} (one seed; planshape.training.hyperparams); sparse and "
-        "dense runs have none",
+        "dense runs have none; the metaworld-s10 profile runs the same cells at "
+        f"{SAC_SHAPING_SCALE:g}",
+        _RAW_OBSERVATIONS_CAVEAT,
+    ),
+)
+#: The metaworld profile's cells with every potential at SAC's planar scale,
+#: :data:`SAC_SHAPING_SCALE`, instead of the rule's 100. At 100, holding a goal whose φ is near
+#: its top costs (1 − γ)·100·φ ≈ 1 reward a step, the sparse reward's own size; the stored
+#: runs at 100 learn and lose the goal (window-open, reach-v4, window-close; on button-press
+#: every shaped entry ends below sparse). Probes at 10 (planshape.training.hyperparams) held
+#: it. Sparse and dense runs have no scale: they are the metaworld profile's runs, ids and all
+#: (copied from leaderboard/metaworld with ``planshape adopt``), and only the shaped runs train.
+METAWORLD_S10_PROFILE = dataclasses.replace(
+    METAWORLD_PROFILE,
+    name="metaworld-s10",
+    description=(
+        "the metaworld profile's cells with every potential's φ multiplied by SAC's planar "
+        f"shaping scale, {SAC_SHAPING_SCALE:g}, instead of 1/(1 − γ) = {SHAPING_SCALE:g}: "
+        "sparse and dense are the metaworld profile's runs"
+    ),
+    shaping_scale=SAC_SHAPING_SCALE,
+    caveats=(
+        *_METAWORLD_SAC_CAVEATS,
+        f"every potential's φ is multiplied by {SAC_SHAPING_SCALE:g}, SAC's planar shaping "
+        f"scale, not the rule's {SHAPING_SCALE:g} (the metaworld profile's); sparse and dense "
+        "runs have none and are the metaworld profile's runs",
         _RAW_OBSERVATIONS_CAVEAT,
     ),
 )
@@ -987,6 +1050,7 @@ PROFILES: dict[str, Profile] = {
         PAPER,
         FULL,
         METAWORLD_PROFILE,
+        METAWORLD_S10_PROFILE,
         INSTANCES,
         DEFAULT_V0,
         METAWORLD_V0_PROFILE,

@@ -129,10 +129,12 @@ class RunSpec:
         eval_episodes: int,
         invariance: str = "not-checked",
         eval_protocol: int = EVAL_PROTOCOL,
+        shaping_scale: float | None = None,
     ) -> RunSpec:
         """The spec of ``key`` with its task's and algorithm's hyperparameters (``eval_protocol``
-        1 only to find runs stored with it: this code evaluates with protocol 2)."""
-        settings = hyperparameters(key.task, key.algo, key.entry)
+        1 only to find runs stored with it: this code evaluates with protocol 2; a
+        ``shaping_scale`` replaces the table's for a shaped entry, as a profile's own does)."""
+        settings = hyperparameters(key.task, key.algo, key.entry, shaping_scale=shaping_scale)
         return cls(key, profile, eval_every, eval_episodes, settings, invariance, eval_protocol)
 
     @property

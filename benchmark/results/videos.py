@@ -67,10 +67,9 @@ def policy_video(
     evaluation episode to a GIF at ``path``; return the run's final evaluation row."""
     import imageio.v3 as iio
 
-    from planshape.harness.runner import RunSpec, make_evaluation_env, train
+    from planshape.harness.runner import make_evaluation_env, train
 
-    chosen = get_profile(profile)
-    spec = RunSpec.create(key, chosen.name, chosen.eval_every, chosen.eval_episodes)
+    spec = get_profile(profile).spec(key)
     learner, rows = train(spec)
     env = make_evaluation_env(key, spec.hyperparameters, render_mode="rgb_array")
     if not hasattr(env.unwrapped, "render_marks"):

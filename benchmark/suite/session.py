@@ -188,12 +188,8 @@ class BenchSession:
     def spec(self, key: RunKey, *, with_verdict: bool = True) -> RunSpec:
         """The run's spec; its id does not depend on the verdict, which is only computed for
         a run that trains (``with_verdict``)."""
-        return RunSpec.create(
-            key,
-            self.profile.name,
-            self.profile.eval_every,
-            self.profile.eval_episodes,
-            invariance=self.verdict(key.potential) if with_verdict else "not-checked",
+        return self.profile.spec(
+            key, invariance=self.verdict(key.potential) if with_verdict else "not-checked"
         )
 
     def claim(self, key: RunKey) -> contextlib.AbstractContextManager[bool]:

@@ -256,16 +256,28 @@ def family(task_id: str) -> str:
     return task_spec(task_id).family
 
 
-def hyperparameters(task_id: str, algo: str, entry: str | None = None) -> dict[str, Any]:
+def hyperparameters(
+    task_id: str, algo: str, entry: str | None = None, *, shaping_scale: float | None = None
+) -> dict[str, Any]:
     """A fresh copy of the settings of ``algo`` (a learner id, e.g. ``SBX-SAC``, whose table is
     ``SAC``'s) on ``task_id``, for a run of ``entry`` (``None``: a shaped entry).
 
     A ``sparse`` or ``dense`` run ignores ``shaping_scale``, so it records
     :data:`UNSHAPED_SCALE` whatever its table's scale is: a sparse run is the same run, with
     the same id, whichever scale the table gives the shaped entries beside it.
+    ``shaping_scale`` replaces the table's scale for a shaped entry (a profile's own scale,
+    :attr:`planshape.harness.profiles.Profile.shaping_scale`); ``None`` keeps the table's.
 
     Example:
         >>> hyperparameters("planshape/Reach-v1", "SBX-SAC", "dense")["shaping_scale"]
+        100.0
+        >>> task = "planshape/MetaWorld-window-open-v3"
+        >>> entry = "plan-distance/stages"
+        >>> hyperparameters(task, "SBX-SAC", entry)["shaping_scale"]
+        100.0
+        >>> hyperparameters(task, "SBX-SAC", entry, shaping_scale=10)["shaping_scale"]
+        10.0
+        >>> hyperparameters(task, "SBX-SAC", "sparse", shaping_scale=10)["shaping_scale"]
         100.0
     """
     from planshape.training.learners import learner
@@ -283,4 +295,6 @@ def hyperparameters(task_id: str, algo: str, entry: str | None = None) -> dict[s
         settings = TABLE[key].as_dict()
     if entry in ("sparse", "dense"):
         settings["shaping_scale"] = UNSHAPED_SCALE
+    elif shaping_scale is not None:
+        settings["shaping_scale"] = float(shaping_scale)
     return settings

@@ -1,0 +1,135 @@
+"""A profile's own shaping scale (``Profile.shaping_scale``): the metaworld-s10 profile runs the
+metaworld profile's cells with φ scaled by 10. Its shaped runs are new runs with ids of their
+own; its sparse and dense runs are the metaworld profile's, so they are adopted, not trained,
+and neither profile's stored runs mix into the other's cells."""
+
+from __future__ import annotations
+
+import pytest
+
+from planshape.errors import BadInputError
+from planshape.harness.adopt import adopt
+from planshape.harness.bench import check_store
+from planshape.harness.profiles import (
+    METAWORLD_PROFILE,
+    METAWORLD_S10_PROFILE,
+    PROFILES,
+    RunKey,
+)
+from planshape.harness.runner import RunSpec
+from planshape.harness.store import ResultStore
+from planshape.training.hyperparams import SAC_SHAPING_SCALE, SHAPING_SCALE
+from tests.results.synthetic import make_run
+
+TASK = "planshape/MetaWorld-button-press-v3"
+ALGO = "SBX-SAC"
+BUDGET = METAWORLD_PROFILE.budgets()[(TASK, ALGO)]
+SHAPED = "plan-distance-sum/stages"
+
+
+def _key(entry: str, seed: int = 0) -> RunKey:
+    return RunKey(TASK, entry, ALGO, seed, BUDGET)
+
+
+def test_the_s10_profile_has_the_metaworld_profiles_runs_and_scores_them_alike():
+    s10, metaworld = METAWORLD_S10_PROFILE, METAWORLD_PROFILE
+    assert PROFILES["metaworld-s10"] is s10
+    assert list(s10.runs()) == list(metaworld.runs())
+    assert (s10.eval_every, s10.eval_episodes, s10.success_measure) == (
+        metaworld.eval_every,
+        metaworld.eval_episodes,
+        metaworld.success_measure,
+    )
+    assert s10.folder == "leaderboard/metaworld-s10" != metaworld.folder
+    assert (s10.shaping_scale, metaworld.shaping_scale) == (SAC_SHAPING_SCALE, None)
+
+
+@pytest.mark.parametrize("entry", ["sparse", "dense"])
+def test_unshaped_runs_are_the_same_runs_in_both_profiles(entry):
+    ours, theirs = METAWORLD_S10_PROFILE.spec(_key(entry)), METAWORLD_PROFILE.spec(_key(entry))
+    assert ours.run_id == theirs.run_id
+    assert ours.hyperparameters == theirs.hyperparameters
+    assert ours.hyperparameters["shaping_scale"] == SHAPING_SCALE
+
+
+def test_a_shaped_run_trains_at_the_profiles_scale_under_an_id_of_its_own():
+    ours, theirs = METAWORLD_S10_PROFILE.spec(_key(SHAPED)), METAWORLD_PROFILE.spec(_key(SHAPED))
+    assert ours.hyperparameters["shaping_scale"] == SAC_SHAPING_SCALE
+    assert theirs.hyperparameters["shaping_scale"] == SHAPING_SCALE
+    assert ours.run_id != theirs.run_id
+    assert {k: v for k, v in ours.hyperparameters.items() if k != "shaping_scale"} == {
+        k: v for k, v in theirs.hyperparameters.items() if k != "shaping_scale"
+    }
+    # the profile's spec is the one a run created by hand with the same scale has
+    created = RunSpec.create(
+        _key(SHAPED), "metaworld-s10", 20_000, 10, shaping_scale=SAC_SHAPING_SCALE
+    )
+    assert created.run_id == ours.run_id
+
+
+def _stored(folder, profile, entry: str, seed: int = 0) -> str:
+    """Write a synthetic finished run of ``entry`` as ``profile`` stores it (its settings and
+    its real id); return the id."""
+    spec = profile.spec(_key(entry, seed))
+    rows = make_run(TASK, entry, ALGO, seed, BUDGET, 0.5)
+    ResultStore(folder).write(
+        spec.run_id,
+        [
+            r
+            | {
+                "run_id": spec.run_id,
+                "profile": profile.name,
+                "eval_protocol": spec.eval_protocol,
+                "hyperparameters": spec.hyperparameters,
+            }
+            for r in rows
+        ],
+    )
+    return spec.run_id
+
+
+def test_each_profile_shows_the_others_unshaped_rows_and_not_its_shaped_ones(tmp_path):
+    s10, metaworld = METAWORLD_S10_PROFILE, METAWORLD_PROFILE
+    for profile in (s10, metaworld):
+        spec = profile.spec(_key(SHAPED))
+        shaped = {
+            "task": TASK,
+            "entry": SHAPED,
+            "algo": ALGO,
+            "budget": BUDGET,
+            "hyperparameters": spec.hyperparameters,
+        }
+        dense = shaped | {
+            "entry": "dense",
+            "hyperparameters": profile.spec(_key("dense")).hyperparameters,
+        }
+        other = metaworld if profile is s10 else s10
+        assert profile.shows(shaped) and not other.shows(shaped)
+        assert profile.shows(dense) and other.shows(dense)
+
+
+def test_a_s10_folder_starts_from_metaworlds_unshaped_runs_and_refuses_its_shaped_ones(tmp_path):
+    """check_store, which every bench runs before training: the metaworld profile's dense run
+    is one of metaworld-s10's runs (the same id); its shaped run, trained at 100, is not, and
+    metaworld still shows it, so new runs at 10 would mix into a folder of runs at 100."""
+    dense_id = _stored(tmp_path, METAWORLD_PROFILE, "dense")
+    check_store(tmp_path, METAWORLD_S10_PROFILE)
+    assert ResultStore(tmp_path).has(METAWORLD_S10_PROFILE.spec(_key("dense")).run_id)
+    assert dense_id == METAWORLD_S10_PROFILE.spec(_key("dense")).run_id
+    _stored(tmp_path, METAWORLD_PROFILE, SHAPED)
+    with pytest.raises(BadInputError, match="holds runs of profile 'metaworld'"):
+        check_store(tmp_path, METAWORLD_S10_PROFILE)
+
+
+def test_adopt_takes_metaworlds_dense_runs_into_the_s10_store_and_refuses_its_shaped_ones(
+    tmp_path,
+):
+    stored, scratch = tmp_path / "stored", tmp_path / "scratch"
+    dense_id = _stored(scratch, METAWORLD_PROFILE, "dense")
+    plan = adopt(scratch, stored, METAWORLD_S10_PROFILE)
+    assert [p.stem for p in plan.added] == [dense_id]
+    before = sorted(p.name for p in (stored / "runs").glob("*"))
+    _stored(scratch, METAWORLD_PROFILE, SHAPED)
+    with pytest.raises(BadInputError, match="is not a run of the 'metaworld-s10' profile"):
+        adopt(scratch, stored, METAWORLD_S10_PROFILE)
+    assert sorted(p.name for p in (stored / "runs").glob("*")) == before
