@@ -902,9 +902,11 @@ METAWORLD_PROFILE = Profile(
     caveats=(
         *_METAWORLD_SAC_CAVEATS,
         f"every potential's φ is multiplied by shaping_scale = 1/(1 − γ) = {SHAPING_SCALE:g}, "
-        f"not SAC's planar {SAC_SHAPING_SCALE:g}: on reach-v4 plan-distance/stages did no "
-        f"worse at {SHAPING_SCALE:g} (one seed; planshape.training.hyperparams); sparse and "
-        "dense runs have none; the metaworld-s10 profile runs the same cells at "
+        f"not SAC's planar {SAC_SHAPING_SCALE:g}: probes at {SAC_SHAPING_SCALE:g} brought no "
+        "shaped entry to dense on reach-v4 (plan-distance/stages, seeds 1-4) or button-press "
+        "(plan-distance-sum/stages, seeds 0-1), and held the goal on window-open where runs at "
+        f"{SHAPING_SCALE:g} lost it (planshape.training.hyperparams); sparse and dense runs "
+        "have none; the metaworld-s10 profile runs the same cells at "
         f"{SAC_SHAPING_SCALE:g}",
         _RAW_OBSERVATIONS_CAVEAT,
     ),
