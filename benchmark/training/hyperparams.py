@@ -56,10 +56,11 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   plan-distance-sum/stages seeds 0 and 1, which end at 1.0 at 100, end at 1.0 at 10 too (seed
   0 drops to 0.0 at 120,000 on the way). Seeds chosen for their collapse, not a test of the
   scale. On button-press (120,000 steps, the same command with ``--chunks 6``),
-  plan-distance-sum/stages at 10 ends at 0.4 (seed 0: 0.0 to 100,000, its hand 0.094 m from the
-  button throughout) and 0.7 (seed 1: 0.6 from 100,000), against 0.6 and 0.6 at 100, where
-  dense reads 1.0 at 60,000-100,000 on every seed (0.96 at the end): no better at 10. The metaworld profile keeps 100; the
-  metaworld-s10 profile (planshape.harness.profiles) runs its cells at 10 with 5 seeds.
+  plan-distance-sum/stages at 10 ends at 0.4 (seed 0: 0.0 to 100,000, the button 0.094 m from
+  its goal, untouched, throughout) and 0.7 (seed 1: 0.6 from 100,000), against 0.6 and 0.6 at
+  100, where dense reads 1.0 at 60,000-100,000 on every seed (0.96 at the end): no better at
+  10. The metaworld profile keeps 100; the metaworld-s10 profile (planshape.harness.profiles)
+  runs its cells at 10 with 5 seeds (README, "The metaworld-s10 profile").
 * ``rescale_observations`` (planar tables): the learner sees the observation mapped from its
   Box bounds onto [-1, 1] (:func:`planshape.harness.runner.learner_view`; the shaping still reads
   metres). The raw coordinates span a few tenths of a metre, on which a [64, 64] tanh MLP is
