@@ -133,3 +133,28 @@ def test_adopt_takes_metaworlds_dense_runs_into_the_s10_store_and_refuses_its_sh
     with pytest.raises(BadInputError, match="is not a run of the 'metaworld-s10' profile"):
         adopt(scratch, stored, METAWORLD_S10_PROFILE)
     assert sorted(p.name for p in (stored / "runs").glob("*")) == before
+
+
+def test_every_committed_s10_run_is_one_of_its_runs_and_its_unshaped_runs_are_metaworlds():
+    """The committed folder: each run's id is the one its profile gives it now (a code change
+    that leaves the numbers must leave the ids), shaped runs trained at 10, and every sparse
+    and dense file is the metaworld profile's file byte for byte (adopted, not retrained)."""
+    import json
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2] / "leaderboard"
+    ours = root / "metaworld-s10" / "runs"
+    paths = sorted(ours.glob("*.jsonl"))
+    assert paths, f"no committed runs in {ours}"
+    planned = set(METAWORLD_S10_PROFILE.runs())
+    for path in paths:
+        first = json.loads(path.read_text().split("\n", 1)[0])
+        key = RunKey(first["task"], first["entry"], first["algo"], first["seed"], first["budget"])
+        assert key in planned, path.name
+        spec = METAWORLD_S10_PROFILE.spec(key)
+        assert spec.run_id == path.stem and spec.hyperparameters == first["hyperparameters"]
+        if key.reward == "shaped":
+            assert first["hyperparameters"]["shaping_scale"] == SAC_SHAPING_SCALE, path.name
+        else:
+            theirs = root / "metaworld" / "runs" / path.name
+            assert theirs.read_bytes() == path.read_bytes(), path.name
