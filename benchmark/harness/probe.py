@@ -73,9 +73,9 @@ def probe(
         raise BadInputError(
             f"probe: --chunks must be between 1 and the budget ({key.budget}); got {chunks}"
         )
-    settings = hyperparameters(key.task, key.algo, key.entry)
     if shaping_scale is not None:
-        settings["shaping_scale"] = checked_scale(key, shaping_scale)
+        shaping_scale = checked_scale(key, shaping_scale)
+    settings = hyperparameters(key.task, key.algo, key.entry, shaping_scale=shaping_scale)
     model = make_learner(key, settings)
     eval_env = make_evaluation_env(key, settings)
     ended: list[dict[str, Any]] = []

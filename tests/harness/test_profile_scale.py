@@ -19,7 +19,7 @@ from planshape.harness.profiles import (
 from planshape.harness.runner import RunSpec
 from planshape.harness.store import ResultStore
 from planshape.training.hyperparams import SAC_SHAPING_SCALE, SHAPING_SCALE
-from tests.results.synthetic import make_run
+from tests.results.synthetic import store_run
 
 TASK = "planshape/MetaWorld-button-press-v3"
 ALGO = "SBX-SAC"
@@ -67,28 +67,7 @@ def test_a_shaped_run_trains_at_the_profiles_scale_under_an_id_of_its_own():
     assert created.run_id == ours.run_id
 
 
-def _stored(folder, profile, entry: str, seed: int = 0) -> str:
-    """Write a synthetic finished run of ``entry`` as ``profile`` stores it (its settings and
-    its real id); return the id."""
-    spec = profile.spec(_key(entry, seed))
-    rows = make_run(TASK, entry, ALGO, seed, BUDGET, 0.5)
-    ResultStore(folder).write(
-        spec.run_id,
-        [
-            r
-            | {
-                "run_id": spec.run_id,
-                "profile": profile.name,
-                "eval_protocol": spec.eval_protocol,
-                "hyperparameters": spec.hyperparameters,
-            }
-            for r in rows
-        ],
-    )
-    return spec.run_id
-
-
-def test_each_profile_shows_the_others_unshaped_rows_and_not_its_shaped_ones(tmp_path):
+def test_each_profile_shows_the_others_unshaped_rows_and_not_its_shaped_ones():
     s10, metaworld = METAWORLD_S10_PROFILE, METAWORLD_PROFILE
     for profile in (s10, metaworld):
         spec = profile.spec(_key(SHAPED))
@@ -112,11 +91,11 @@ def test_a_s10_folder_starts_from_metaworlds_unshaped_runs_and_refuses_its_shape
     """check_store, which every bench runs before training: the metaworld profile's dense run
     is one of metaworld-s10's runs (the same id); its shaped run, trained at 100, is not, and
     metaworld still shows it, so new runs at 10 would mix into a folder of runs at 100."""
-    dense_id = _stored(tmp_path, METAWORLD_PROFILE, "dense")
+    dense_id = store_run(tmp_path, _key("dense"), METAWORLD_PROFILE)
     check_store(tmp_path, METAWORLD_S10_PROFILE)
     assert ResultStore(tmp_path).has(METAWORLD_S10_PROFILE.spec(_key("dense")).run_id)
     assert dense_id == METAWORLD_S10_PROFILE.spec(_key("dense")).run_id
-    _stored(tmp_path, METAWORLD_PROFILE, SHAPED)
+    store_run(tmp_path, _key(SHAPED), METAWORLD_PROFILE)
     with pytest.raises(BadInputError, match="holds runs of profile 'metaworld'"):
         check_store(tmp_path, METAWORLD_S10_PROFILE)
 
@@ -125,11 +104,11 @@ def test_adopt_takes_metaworlds_dense_runs_into_the_s10_store_and_refuses_its_sh
     tmp_path,
 ):
     stored, scratch = tmp_path / "stored", tmp_path / "scratch"
-    dense_id = _stored(scratch, METAWORLD_PROFILE, "dense")
+    dense_id = store_run(scratch, _key("dense"), METAWORLD_PROFILE)
     plan = adopt(scratch, stored, METAWORLD_S10_PROFILE)
     assert [p.stem for p in plan.added] == [dense_id]
     before = sorted(p.name for p in (stored / "runs").glob("*"))
-    _stored(scratch, METAWORLD_PROFILE, SHAPED)
+    store_run(scratch, _key(SHAPED), METAWORLD_PROFILE)
     with pytest.raises(BadInputError, match="is not a run of the 'metaworld-s10' profile"):
         adopt(scratch, stored, METAWORLD_S10_PROFILE)
     assert sorted(p.name for p in (stored / "runs").glob("*")) == before

@@ -16,6 +16,7 @@ import pytest
 
 from planshape.cli import main
 from planshape.harness.store import ResultStore, write_atomic
+from tests.results.synthetic import store_run
 
 SUBMISSION = "tests.submission.example:ProgressAndDistance"
 ROOT = Path(__file__).resolve().parents[2]
@@ -243,7 +244,7 @@ def test_a_larger_profile_starts_from_the_same_runs_of_a_smaller_one(tmp_path):
     default, planar = PROFILES["default"], PROFILES["planar"]
     key = RunKey("planshape/Reach-v1", "sparse", "PPO", 0, 245_760)
     assert key in set(default.runs()) and key in set(planar.runs())
-    _store_as(tmp_path, key, "default")
+    store_run(tmp_path, key, PROFILES["default"])
     check_store(tmp_path, planar)  # the same run
     assert ResultStore(tmp_path).has(
         RunSpec.create(key, "planar", planar.eval_every, planar.eval_episodes).run_id
@@ -261,35 +262,19 @@ def test_a_run_no_profile_shows_any_more_does_not_block_a_folder(tmp_path):
     from planshape.harness.profiles import PROFILES, RunKey
 
     planar = PROFILES["planar"]
-    _store_as(tmp_path, RunKey("planshape/Push-v1", "dense", "SBX-SAC", 0, 100_000), "default")
+    store_run(
+        tmp_path, RunKey("planshape/Push-v1", "dense", "SBX-SAC", 0, 100_000), PROFILES["default"]
+    )
     check_store(tmp_path, planar)  # 100,000 steps: push's SAC budget before 150,000
-    _store_as(tmp_path, RunKey("planshape/Push-v1", "dense", "SBX-SAC", 0, 150_000), "default")
+    store_run(
+        tmp_path, RunKey("planshape/Push-v1", "dense", "SBX-SAC", 0, 150_000), PROFILES["default"]
+    )
     check_store(tmp_path, planar)  # one of planar's own runs
-    _store_as(tmp_path, RunKey("planshape/Reach-v1", "sparse", "PPO", 0, 245_760), "default")
+    store_run(
+        tmp_path, RunKey("planshape/Reach-v1", "sparse", "PPO", 0, 245_760), PROFILES["default"]
+    )
     with pytest.raises(BadInputError, match="holds runs of profile 'default'"):
         check_store(tmp_path, PROFILES["smoke"])  # shown by the default profile
-
-
-def _store_as(folder, key, profile_name: str) -> None:
-    """Store a synthetic run of ``key`` as ``profile_name`` stored it, with the settings the
-    tables give it and its real id."""
-    from planshape.harness.profiles import PROFILES
-    from planshape.harness.runner import EVAL_PROTOCOL, RunSpec
-    from tests.results.synthetic import make_run
-
-    profile = PROFILES[profile_name]
-    spec = RunSpec.create(key, profile_name, profile.eval_every, profile.eval_episodes)
-    rows = make_run(
-        task=key.task,
-        entry=key.entry,
-        algo=key.algo,
-        seed=key.seed,
-        budget=key.budget,
-        profile=profile_name,
-        eval_protocol=EVAL_PROTOCOL,
-        hyperparameters=spec.hyperparameters,
-    )
-    ResultStore(folder).write(spec.run_id, [{**r, "run_id": spec.run_id} for r in rows])
 
 
 def test_a_killed_benchmarks_claim_ends_with_it(tmp_path):

@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from planshape.harness.profiles import Profile, RunKey
 
 #: entry -> (final success rate, final distance) around which the seeds scatter.
 LEVELS = {
@@ -79,3 +83,23 @@ def synthetic_rows(
                     invariance = "preserved" if entry == "plan-based/multi" else "not-checked"
                     rows += make_run(task, entry, algo, seed, 1000, s, d, invariance=invariance)
     return rows
+
+
+def store_run(folder: Path, key: RunKey, profile: Profile) -> str:
+    """Write a synthetic finished run of ``key`` into ``folder``'s store as ``profile`` stores
+    it: the settings, id and evaluation protocol of :meth:`Profile.spec`; return the id."""
+    from planshape.harness.store import ResultStore
+
+    spec = profile.spec(key)
+    rows = make_run(
+        task=key.task,
+        entry=key.entry,
+        algo=key.algo,
+        seed=key.seed,
+        budget=key.budget,
+        profile=profile.name,
+        eval_protocol=spec.eval_protocol,
+        hyperparameters=spec.hyperparameters,
+    )
+    ResultStore(folder).write(spec.run_id, [{**r, "run_id": spec.run_id} for r in rows])
+    return spec.run_id
