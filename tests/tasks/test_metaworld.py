@@ -292,3 +292,40 @@ def test_the_metaworld_profile_sums_distances_exactly_where_the_plan_places_an_o
     from planshape.harness.profiles import METAWORLD_OBJECT_TASKS, METAWORLD_SAC_BUDGETS
 
     assert set(METAWORLD_OBJECT_TASKS) == set(METAWORLD_SAC_BUDGETS) & set(OBJECT_TASKS)
+
+
+BUTTON = "planshape/MetaWorld-button-press-v3"
+
+
+@pytest.mark.filterwarnings("ignore:Constant\\(s\\) may be too high")
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_a_hand_moved_straight_to_its_place_in_the_button_plan_lines_up_then_presses(
+    seed: int,
+) -> None:
+    """button-press's ``(hand-in-front)`` place is where MetaWorld's scripted expert lines the
+    hand up (the button's face plus ``FRONT_OFFSET``); the expert first backs away while it lines
+    up, the potential's place is straight ahead. A hand driven straight at that place (the
+    place of the plan's next subgoal, as ``plan-distance`` measures it) is not stopped short:
+    it lines up first, then presses the button in fewer steps than the expert (37–42 against
+    58–62 on seeds 0–3), so the place is no dead end like button-press-topdown's ``stages``."""
+    from planshape.tasks.metaworld.button import FRONT_OFFSET
+
+    env = make(BUTTON, "shaped", potential="plan-distance")
+    geometry = env.get_wrapper_attr("geometry")
+    obs, info = env.reset(seed=seed)
+    np.testing.assert_allclose(
+        geometry.positions(obs)["hand-to-front"],
+        layout.hand(obs) - layout.main_object(obs) - FRONT_OFFSET,
+    )
+    lined_up_at = pressed_at = None
+    for t in range(1, 101):
+        action = np.zeros(4, dtype=np.float32)
+        action[:3] = np.clip(-25 * geometry.positions(obs)["hand-to-front"], -1, 1)
+        obs, *_, info = env.step(action)
+        if info["progress"] >= 1 and lined_up_at is None:
+            lined_up_at = t
+        if info["success"]:
+            pressed_at = t
+            break
+    assert lined_up_at is not None and pressed_at is not None, (lined_up_at, pressed_at)
+    assert lined_up_at < pressed_at < 60 and info["progress"] == 2
