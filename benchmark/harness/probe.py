@@ -52,13 +52,15 @@ def probe(
     eval_episodes: int = 10,
     tensorboard: str | None = None,
     shaping_scale: float | None = None,
+    observe_progress: bool = False,
 ) -> list[dict[str, Any]]:
     """Train ``key`` in ``chunks`` equal parts; one row of learner statistics after each.
     With ``tensorboard`` (a folder) the run also logs there
     (:mod:`planshape.training.tensorboard_logs`). ``shaping_scale`` replaces the table's
     multiplier of φ (:data:`planshape.training.hyperparams.SHAPING_SCALE`) for this run only:
     how budgets and scales are chosen from curves before a table changes; every row records
-    the scale it trained with.
+    the scale it trained with. ``observe_progress`` shows the learner its plan progress
+    (:mod:`planshape.shaping.observed_progress`), as a profile with that setting does.
     """
     from stable_baselines3.common.callbacks import BaseCallback
 
@@ -75,7 +77,18 @@ def probe(
         )
     if shaping_scale is not None:
         shaping_scale = checked_scale(key, shaping_scale)
-    settings = hyperparameters(key.task, key.algo, key.entry, shaping_scale=shaping_scale)
+    if observe_progress and key.reward != "shaped":
+        raise BadInputError(
+            f"--observe-progress shows a plan's progress; entry {key.entry!r} has no plan "
+            "(give a POTENTIAL/MODEL entry or drop the option)"
+        )
+    settings = hyperparameters(
+        key.task,
+        key.algo,
+        key.entry,
+        shaping_scale=shaping_scale,
+        observe_progress=observe_progress,
+    )
     model = make_learner(key, settings)
     eval_env = make_evaluation_env(key, settings)
     ended: list[dict[str, Any]] = []
@@ -246,6 +259,11 @@ def _probe_command(parser: argparse.ArgumentParser) -> Handler:
         help="multiply φ by S instead of the hyperparameter table's 1/(1 − γ) (shaped entries)",
     )
     parser.add_argument(
+        "--observe-progress",
+        action="store_true",
+        help="the learner sees its plan progress after the observation (shaped entries)",
+    )
+    parser.add_argument(
         "--tensorboard", metavar="DIR", help="also log the run to TensorBoard under DIR"
     )
 
@@ -257,7 +275,14 @@ def _probe_command(parser: argparse.ArgumentParser) -> Handler:
             from planshape.training.tensorboard_logs import require_tensorboard
 
             require_tensorboard()
-        rows = probe(key, args.chunks, args.episodes, args.tensorboard, args.shaping_scale)
+        rows = probe(
+            key,
+            args.chunks,
+            args.episodes,
+            args.tensorboard,
+            args.shaping_scale,
+            args.observe_progress,
+        )
         print(json.dumps(rows) if args.json else format_rows(rows))
         return 0
 

@@ -196,6 +196,9 @@ class Profile:
             hyperparameter tables' (:mod:`planshape.training.hyperparams`); ``None`` keeps the
             tables'. It is part of each shaped run's settings, so of its id; sparse and dense
             runs have no scale, so they are the same runs (same ids) as another profile's.
+        observe_progress: every shaped run's learner sees its plan progress after the
+            observation (:mod:`planshape.shaping.observed_progress`); recorded in its settings,
+            so part of its id. Sparse and dense runs have no plan: their ids do not change.
     """
 
     name: str
@@ -207,6 +210,7 @@ class Profile:
     archived: str = ""
     success_measure: SuccessMeasure = "end"
     shaping_scale: float | None = None
+    observe_progress: bool = False
 
     @property
     def folder(self) -> str:
@@ -216,7 +220,8 @@ class Profile:
 
     def spec(self, key: RunKey, invariance: str = "not-checked") -> RunSpec:
         """The :class:`planshape.harness.runner.RunSpec` of one of its runs: the profile's
-        evaluation settings and, for a shaped entry, its :attr:`shaping_scale` if it has one.
+        evaluation settings and, for a shaped entry, its :attr:`shaping_scale` if it has one
+        and its :attr:`observe_progress`.
 
         Example:
             >>> key = RunKey("planshape/Reach-v1", "dense", "PPO", 0, 4096)
@@ -232,6 +237,7 @@ class Profile:
             self.eval_episodes,
             invariance=invariance,
             shaping_scale=self.shaping_scale,
+            observe_progress=self.observe_progress,
         )
 
     def runs(
@@ -387,19 +393,25 @@ class Profile:
         return [
             budgets.get((r["task"], r["algo"])) == int(r["budget"])
             and r["hyperparameters"]
-            == current_settings(r["task"], r["algo"], r["entry"], self.shaping_scale)
+            == current_settings(
+                r["task"], r["algo"], r["entry"], self.shaping_scale, self.observe_progress
+            )
             for r in rows
         ]
 
 
 @cache
 def current_settings(
-    task: str, algo: str, entry: str, shaping_scale: float | None = None
+    task: str,
+    algo: str,
+    entry: str,
+    shaping_scale: float | None = None,
+    observe_progress: bool = False,
 ) -> dict[str, Any]:
     """The settings a run of ``entry`` by ``algo`` on ``task`` trains with now
     (:func:`planshape.training.hyperparams.hyperparameters`, read once per process: the tables
-    are constants), with a profile's own ``shaping_scale`` if it has one. Callers compare with
-    it and must not change it.
+    are constants), with a profile's own ``shaping_scale`` if it has one and its
+    ``observe_progress``. Callers compare with it and must not change it.
 
     Example:
         >>> current_settings("planshape/Reach-v1", "PPO", "dense")["n_envs"]
@@ -407,7 +419,9 @@ def current_settings(
     """
     from planshape.training.hyperparams import hyperparameters
 
-    return hyperparameters(task, algo, entry, shaping_scale=shaping_scale)
+    return hyperparameters(
+        task, algo, entry, shaping_scale=shaping_scale, observe_progress=observe_progress
+    )
 
 
 SMOKE = Profile(
@@ -935,6 +949,31 @@ METAWORLD_S10_PROFILE = dataclasses.replace(
         _RAW_OBSERVATIONS_CAVEAT,
     ),
 )
+#: The metaworld-s10 profile's cells with every shaped run's learner seeing its plan progress
+#: (max_idx / n) after MetaWorld's observation (:mod:`planshape.shaping.observed_progress`):
+#: φ depends on progress, which the observation alone does not determine (button-press's
+#: ``(hand-in-front)`` holds anywhere in a slab in front of the button), so without it the
+#: critic's targets carry noise of up to half φ's scale. The exploratory probe that suggested it
+#: is in planshape.training.hyperparams. Sparse and dense have no plan: they are the metaworld
+#: profile's runs, ids and all.
+METAWORLD_PROGRESS_PROFILE = dataclasses.replace(
+    METAWORLD_S10_PROFILE,
+    name="metaworld-progress",
+    description=(
+        "the metaworld-s10 profile's cells (φ multiplied by "
+        f"{SAC_SHAPING_SCALE:g}) with every shaped run's learner seeing its plan progress "
+        "after the observation: sparse and dense are the metaworld profile's runs"
+    ),
+    observe_progress=True,
+    caveats=(
+        *_METAWORLD_SAC_CAVEATS,
+        f"every potential's φ is multiplied by {SAC_SHAPING_SCALE:g} (as in metaworld-s10), "
+        "and every shaped run's learner sees its plan progress max_idx / n as one more number "
+        "after MetaWorld's 39, in training and evaluation; sparse and dense runs see the 39 "
+        "only and are the metaworld profile's runs",
+        _RAW_OBSERVATIONS_CAVEAT,
+    ),
+)
 METAWORLD_V0_PROFILE = _metaworld(
     "metaworld-v0",
     METAWORLD_V0,
@@ -1053,6 +1092,7 @@ PROFILES: dict[str, Profile] = {
         FULL,
         METAWORLD_PROFILE,
         METAWORLD_S10_PROFILE,
+        METAWORLD_PROGRESS_PROFILE,
         INSTANCES,
         DEFAULT_V0,
         METAWORLD_V0_PROFILE,

@@ -40,8 +40,9 @@ import json
 import math
 import subprocess
 import time
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
-from functools import cache
+from functools import cache, partial
 from importlib import metadata
 from pathlib import Path
 from typing import Any
@@ -130,11 +131,19 @@ class RunSpec:
         invariance: str = "not-checked",
         eval_protocol: int = EVAL_PROTOCOL,
         shaping_scale: float | None = None,
+        observe_progress: bool = False,
     ) -> RunSpec:
         """The spec of ``key`` with its task's and algorithm's hyperparameters (``eval_protocol``
         1 only to find runs stored with it: this code evaluates with protocol 2; a
-        ``shaping_scale`` replaces the table's for a shaped entry, as a profile's own does)."""
-        settings = hyperparameters(key.task, key.algo, key.entry, shaping_scale=shaping_scale)
+        ``shaping_scale`` replaces the table's for a shaped entry, and ``observe_progress``
+        shows its learner the plan progress, as a profile's own settings do)."""
+        settings = hyperparameters(
+            key.task,
+            key.algo,
+            key.entry,
+            shaping_scale=shaping_scale,
+            observe_progress=observe_progress,
+        )
         return cls(key, profile, eval_every, eval_episodes, settings, invariance, eval_protocol)
 
     @property
@@ -209,10 +218,10 @@ def make_learner(key: RunKey, hyperparameters: dict[str, Any]) -> Any:
     """The learner of ``key`` (stable-baselines3 or SBX, :mod:`planshape.training.learners`) on its
     training VecEnv.
 
-    ``n_envs``, ``shaping_scale`` and ``rescale_observations`` of ``hyperparameters`` configure
-    the environments, the rest the algorithm. The settings are deep-copied first:
-    stable-baselines3 writes into ``policy_kwargs``, and a run's settings are part of its
-    identity. The process's compute threads are fixed first
+    ``n_envs``, ``shaping_scale``, ``rescale_observations`` and ``observe_progress`` of
+    ``hyperparameters`` configure the environments, the rest the algorithm. The settings are
+    deep-copied first: stable-baselines3 writes into ``policy_kwargs``, and a run's settings are
+    part of its identity. The process's compute threads are fixed first
     (:func:`planshape.training.threads.fix_compute_threads`: PyTorch on one thread, JAX on two
     CPUs), as every stored run had them, so that the numbers do not depend on the machine.
     """
@@ -223,8 +232,15 @@ def make_learner(key: RunKey, hyperparameters: dict[str, Any]) -> Any:
     n_envs = settings.pop("n_envs")
     shaping_scale = settings.pop("shaping_scale", 1.0)
     rescale = settings.pop("rescale_observations", False)
+    progress = settings.pop("observe_progress", False)
     venv = make_training_env(
-        key, n_envs, settings["gamma"], key.seed, shaping_scale, rescale_observations=rescale
+        key,
+        n_envs,
+        settings["gamma"],
+        key.seed,
+        shaping_scale,
+        rescale_observations=rescale,
+        observe_progress=progress,
     )
     return make(key.algo, venv, seed=key.seed, device="cpu", verbose=0, **settings)
 
@@ -236,11 +252,13 @@ def make_training_env(
     seed: int,
     shaping_scale: float = 1.0,
     rescale_observations: bool = False,
+    observe_progress: bool = False,
 ):
     """The VecEnv a learner trains on: each environment wrapped in its own shaping, inside the
-    VecEnv, shaped with the learner's γ and φ multiplied by ``shaping_scale``; with
-    ``rescale_observations``, the learner sees :func:`learner_view` of each environment. The VecEnv
-    is a :class:`~planshape.training.algorithm.FreshInfoVecEnv` (no deep copy of the infos)."""
+    VecEnv, shaped with the learner's γ and φ multiplied by ``shaping_scale``; the learner sees
+    :func:`learner_view` of each environment (its plan progress appended with
+    ``observe_progress``, rescaled with ``rescale_observations``). The VecEnv is a
+    :class:`~planshape.training.algorithm.FreshInfoVecEnv` (no deep copy of the infos)."""
     from stable_baselines3.common.env_util import make_vec_env
 
     from planshape.training.algorithm import FreshInfoVecEnv
@@ -250,13 +268,13 @@ def make_training_env(
         env_kwargs.update(
             potential=key.potential, model=key.model, gamma=gamma, potential_scale=shaping_scale
         )
-    wrapper = learner_view if rescale_observations else None
+    settings = {"rescale_observations": rescale_observations, "observe_progress": observe_progress}
     return make_vec_env(
         key.task,
         n_envs=n_envs,
         seed=seed,
         env_kwargs=env_kwargs,
-        wrapper_class=wrapper,
+        wrapper_class=partial(learner_view, key=key, hyperparameters=settings),
         vec_env_cls=FreshInfoVecEnv,
     )
 
@@ -269,11 +287,32 @@ def make_evaluation_env(
     held_out = {"instances": "eval"} if task_spec(key.task).instances else {}
     if render_mode is not None:
         held_out["render_mode"] = render_mode
-    env = gymnasium.make(key.task, **held_out)
-    return learner_view(env) if hyperparameters.get("rescale_observations") else env
+    return learner_view(gymnasium.make(key.task, **held_out), key, hyperparameters)
 
 
-def learner_view(env: gymnasium.Env) -> gymnasium.Env:
+def learner_view(
+    env: gymnasium.Env, key: RunKey, hyperparameters: Mapping[str, Any]
+) -> gymnasium.Env:
+    """``env`` as the learner of ``key`` sees it, in training and in evaluation alike: with
+    ``observe_progress``, its plan progress appended
+    (:func:`planshape.shaping.registration.observe_progress`); with ``rescale_observations``,
+    the observation mapped by :func:`rescaled`. Neither is applied without its setting.
+
+    Example:
+        >>> import planshape
+        >>> key = RunKey("planshape/Reach-v1", "plan-based/single", "PPO", 0, 4096)
+        >>> env = learner_view(gymnasium.make(key.task), key, {"observe_progress": True})
+        >>> env.observation_space.shape
+        (3,)
+    """
+    if hyperparameters.get("observe_progress"):
+        from planshape.shaping.registration import observe_progress
+
+        env = observe_progress(env, key.task, key.model)
+    return rescaled(env) if hyperparameters.get("rescale_observations") else env
+
+
+def rescaled(env: gymnasium.Env) -> gymnasium.Env:
     """``env`` with its observations mapped affinely from their Box bounds onto [-1, 1].
 
     Outermost wrapper: the shaping inside still classifies the raw observation, and a fixed
@@ -283,7 +322,7 @@ def learner_view(env: gymnasium.Env) -> gymnasium.Env:
 
     Example:
         >>> import planshape
-        >>> env = learner_view(gymnasium.make("planshape/Reach-v0"))
+        >>> env = rescaled(gymnasium.make("planshape/Reach-v0"))
         >>> float(env.observation_space.low.min()), float(env.observation_space.high.max())
         (-1.0, 1.0)
     """

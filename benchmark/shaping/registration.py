@@ -318,3 +318,26 @@ def shape_instances(
         geometry=geometry,
         plans=plans,
     )
+
+
+def observe_progress(
+    env: gymnasium.Env,
+    task: str,
+    model: str | None = None,
+    search: str = "astar-lmcut",
+    match: SubgoalMatch = "fluents",
+) -> gymnasium.Env:
+    """``env`` (``task`` with any reward) seen with plan progress appended to its observation
+    (:class:`~planshape.shaping.observed_progress.ObservedProgress`): the plan of ``model``, or of
+    each episode's instance on a task-instance distribution, planned as :func:`shape` plans it."""
+    from planshape.shaping.observed_progress import ObservedProgress
+
+    spec = task_spec(task)
+    if spec.instances:
+        name = model or spec.default_model
+
+        def plans(instance: Any) -> PlanProgress:
+            return instance_plan(task, name, instance, search, match)[0]
+
+        return ObservedProgress(env, plans(instance_set(spec).train[0]), plans=plans)
+    return ObservedProgress(env, _progress(abstract_model(spec, model), search, match))

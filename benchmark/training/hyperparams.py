@@ -62,7 +62,7 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   10. The metaworld profile keeps 100; the metaworld-s10 profile (planshape.harness.profiles)
   runs its cells at 10 with 5 seeds (README, "The metaworld-s10 profile").
 * ``rescale_observations`` (planar tables): the learner sees the observation mapped from its
-  Box bounds onto [-1, 1] (:func:`planshape.harness.runner.learner_view`; the shaping still reads
+  Box bounds onto [-1, 1] (:func:`planshape.harness.runner.rescaled`; the shaping still reads
   metres). The raw coordinates span a few tenths of a metre, on which a [64, 64] tanh MLP is
   nearly affine: on maze-reach, PPO's policy mean was an affine function of the position
   (up-right everywhere, so the end effector went over the wall and stopped at the
@@ -142,6 +142,10 @@ class Settings:
     )
     rescale_observations: bool | None = setting(
         "the learner sees the observation mapped from its Box bounds onto [-1, 1]"
+    )
+    observe_progress: bool | None = setting(
+        "the learner sees plan progress max_idx / n after the observation (shaped runs; "
+        "planshape.shaping.observed_progress)"
     )
     learning_rate: float | None = setting("the optimiser's step size")
     batch_size: int | None = setting("minibatch size of one gradient step")
@@ -262,7 +266,12 @@ def family(task_id: str) -> str:
 
 
 def hyperparameters(
-    task_id: str, algo: str, entry: str | None = None, *, shaping_scale: float | None = None
+    task_id: str,
+    algo: str,
+    entry: str | None = None,
+    *,
+    shaping_scale: float | None = None,
+    observe_progress: bool = False,
 ) -> dict[str, Any]:
     """A fresh copy of the settings of ``algo`` (a learner id, e.g. ``SBX-SAC``, whose table is
     ``SAC``'s) on ``task_id``, for a run of ``entry`` (``None``: a shaped entry).
@@ -272,6 +281,10 @@ def hyperparameters(
     the same id, whichever scale the table gives the shaped entries beside it.
     ``shaping_scale`` replaces the table's scale for a shaped entry (a profile's own scale,
     :attr:`planshape.harness.profiles.Profile.shaping_scale`); ``None`` keeps the table's.
+    ``observe_progress`` shows a shaped entry's learner its plan progress
+    (:mod:`planshape.shaping.observed_progress`) and is recorded, so it is part of the run's id;
+    sparse and dense have no plan and ignore it, and without it nothing is recorded, so no
+    stored run's id changes.
 
     Example:
         >>> hyperparameters("planshape/Reach-v1", "SBX-SAC", "dense")["shaping_scale"]
@@ -284,6 +297,10 @@ def hyperparameters(
         10.0
         >>> hyperparameters(task, "SBX-SAC", "sparse", shaping_scale=10)["shaping_scale"]
         100.0
+        >>> hyperparameters(task, "SBX-SAC", entry, observe_progress=True)["observe_progress"]
+        True
+        >>> "observe_progress" in hyperparameters(task, "SBX-SAC", "dense", observe_progress=True)
+        False
     """
     from planshape.training.learners import learner
 
@@ -300,6 +317,9 @@ def hyperparameters(
         settings = TABLE[key].as_dict()
     if entry in ("sparse", "dense"):
         settings["shaping_scale"] = UNSHAPED_SCALE
-    elif shaping_scale is not None:
-        settings["shaping_scale"] = float(shaping_scale)
+    else:
+        if shaping_scale is not None:
+            settings["shaping_scale"] = float(shaping_scale)
+        if observe_progress:
+            settings["observe_progress"] = True
     return settings

@@ -10,7 +10,7 @@ import pytest
 import planshape  # noqa: F401  (registers the tasks)
 from planshape.errors import BadInputError
 from planshape.harness.profiles import PLANAR, RunKey
-from planshape.harness.runner import learner_view, make_evaluation_env, make_learner
+from planshape.harness.runner import make_evaluation_env, make_learner, rescaled
 from planshape.shaping.registration import task_spec
 from planshape.training.hyperparams import TABLE, hyperparameters
 
@@ -29,7 +29,7 @@ def test_the_view_is_the_affine_image_and_the_shaping_still_reads_metres(task):
         )
         raw_space = env.observation_space
         if wrap:
-            env = learner_view(env)
+            env = rescaled(env)
         obs, _ = env.reset(seed=3)
         steps = [(obs, 0.0, 0.0)]
         for action in ACTIONS:
@@ -68,11 +68,11 @@ def test_every_table_that_rescales_has_bounded_observations():
             continue
         for task in PLANAR:
             if task_spec(task).id.split("/")[1].startswith(family):
-                learner_view(gymnasium.make(task))
+                rescaled(gymnasium.make(task))
                 checked += 1
     assert checked >= 6  # PPO and SAC on reach, push, maze-reach
 
 
 def test_an_unbounded_observation_space_is_a_clear_error():
     with pytest.raises(BadInputError, match="CartPole-v1.*finite bounds.*rescale_observations"):
-        learner_view(gymnasium.make("CartPole-v1"))
+        rescaled(gymnasium.make("CartPole-v1"))
