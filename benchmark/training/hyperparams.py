@@ -61,6 +61,14 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   100, where dense reads 1.0 at 60,000-100,000 on every seed (0.96 at the end): no better at
   10. The metaworld profile keeps 100; the metaworld-s10 profile (planshape.harness.profiles)
   runs its cells at 10 with 5 seeds (README, "The metaworld-s10 profile").
+* ``observe_progress`` (no table sets it; the metaworld-progress profile does): the learner
+  sees max_idx / n after the observation (:mod:`planshape.shaping.observed_progress`). An
+  exploratory probe suggested it: button-press plan-distance-sum/stages at 10, seed 2, whose
+  stored run reads 0.0 at every point (the button untouched), read 0.0, 0.0, 0.0, 0.2, 0.8, 1.0
+  at 20,000 ... 120,000 steps with progress observed (a script that wrapped the probe's
+  environments; the wrapper it became gives the same training numbers: training-episode
+  distance 0.094436333664627 after 6,000 steps either way). One seed; the 5-seed runs are the
+  metaworld-progress profile's.
 * ``rescale_observations`` (planar tables): the learner sees the observation mapped from its
   Box bounds onto [-1, 1] (:func:`planshape.harness.runner.rescaled`; the shaping still reads
   metres). The raw coordinates span a few tenths of a metre, on which a [64, 64] tanh MLP is

@@ -12,6 +12,7 @@ from planshape.harness.adopt import adopt
 from planshape.harness.bench import check_store
 from planshape.harness.profiles import (
     METAWORLD_PROFILE,
+    METAWORLD_PROGRESS_PROFILE,
     METAWORLD_S10_PROFILE,
     PROFILES,
     RunKey,
@@ -114,26 +115,31 @@ def test_adopt_takes_metaworlds_dense_runs_into_the_s10_store_and_refuses_its_sh
     assert sorted(p.name for p in (stored / "runs").glob("*")) == before
 
 
-def test_every_committed_s10_run_is_one_of_its_runs_and_its_unshaped_runs_are_metaworlds():
-    """The committed folder: each run's id is the one its profile gives it now (a code change
-    that leaves the numbers must leave the ids), shaped runs trained at 10, and every sparse
-    and dense file is the metaworld profile's file byte for byte (adopted, not retrained)."""
+@pytest.mark.parametrize("profile", [METAWORLD_S10_PROFILE, METAWORLD_PROGRESS_PROFILE], ids=str)
+def test_every_committed_run_is_one_of_its_runs_and_its_unshaped_runs_are_metaworlds(profile):
+    """The committed folders of the profiles derived from metaworld: each run's id is the one
+    its profile gives it now (a code change that leaves the numbers must leave the ids), with
+    the profile's settings (so metaworld-progress's shaped runs observed their progress),
+    shaped runs trained at 10, and every sparse and dense file is the metaworld profile's file
+    byte for byte (adopted, not retrained)."""
     import json
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[2] / "leaderboard"
-    ours = root / "metaworld-s10" / "runs"
+    ours = root / profile.name / "runs"
     paths = sorted(ours.glob("*.jsonl"))
     assert paths, f"no committed runs in {ours}"
-    planned = set(METAWORLD_S10_PROFILE.runs())
+    planned = set(profile.runs())
     for path in paths:
         first = json.loads(path.read_text().split("\n", 1)[0])
         key = RunKey(first["task"], first["entry"], first["algo"], first["seed"], first["budget"])
         assert key in planned, path.name
-        spec = METAWORLD_S10_PROFILE.spec(key)
+        spec = profile.spec(key)
         assert spec.run_id == path.stem and spec.hyperparameters == first["hyperparameters"]
         if key.reward == "shaped":
             assert first["hyperparameters"]["shaping_scale"] == SAC_SHAPING_SCALE, path.name
+            observed = first["hyperparameters"].get("observe_progress", False)
+            assert observed == profile.observe_progress, path.name
         else:
             theirs = root / "metaworld" / "runs" / path.name
             assert theirs.read_bytes() == path.read_bytes(), path.name
