@@ -10,11 +10,13 @@ ranking of policies is unchanged either way; what the hidden progress adds is no
 critic's targets. :class:`ObservedProgress` removes it by showing the learner max_idx / n, one
 number in [0, 1], after the task's own observation.
 
-It tracks progress itself with the plan's :class:`~planshape.shaping.progress.PlanProgress`
-(the same classifiers and ``advance`` as the shaping wrapper), so it works on the evaluation
-environment too, which has no shaping: the deterministic policy is evaluated on the task's own
-reward and sees the progress of its own episode. On a task-instance distribution it reads
-``info["instance"]`` on every ``reset`` and tracks that instance's plan.
+Over a shaping wrapper (training) it reads the progress the wrapper publishes in
+``info["progress"]``, so no step is classified twice. Without one (the evaluation environment,
+where the deterministic policy is scored on the task's own reward) it tracks progress itself
+with the plan's :class:`~planshape.shaping.progress.PlanProgress`, the same classifiers and
+``advance`` as the shaping wrapper, so the policy sees the progress of its own episode. On a
+task-instance distribution it reads ``info["instance"]`` on every ``reset`` and uses that
+instance's plan.
 
 Example:
     >>> import gymnasium
@@ -79,12 +81,14 @@ class ObservedProgress(gymnasium.ObservationWrapper):
         obs, info = self.env.reset(**kwargs)
         if self._plans is not None:
             self.progress = self._plans(info["instance"])
-        self._max_idx = int(self.progress.initial(obs))
+        shaped = info.get("progress")
+        self._max_idx = int(self.progress.initial(obs) if shaped is None else shaped)
         return self.observation(obs), info
 
     def step(self, action: Any) -> tuple[Any, Any, bool, bool, dict[str, Any]]:
         obs, reward, terminated, truncated, info = self.env.step(action)
-        self._max_idx = int(self.progress.advance(self._max_idx, obs))
+        shaped = info.get("progress")
+        self._max_idx = int(self.progress.advance(self._max_idx, obs) if shaped is None else shaped)
         return self.observation(obs), reward, terminated, truncated, info
 
     def observation(self, observation: Any) -> np.ndarray:

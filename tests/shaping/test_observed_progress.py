@@ -13,7 +13,7 @@ from planshape.errors import BadInputError
 from planshape.harness.profiles import RunKey
 from planshape.harness.runner import make_evaluation_env, make_learner
 from planshape.shaping.observed_progress import ObservedProgress
-from planshape.shaping.registration import observe_progress
+from planshape.shaping.registration import instance_plan, observe_progress
 from planshape.tasks.planar.oracle import ORACLES
 from planshape.training.hyperparams import hyperparameters
 
@@ -66,9 +66,8 @@ def test_a_distribution_switches_to_each_episodes_plan_on_reset():
     for seed in range(4):
         _, info = env.reset(seed=seed)
         plans.add(id(env.progress))
-        assert env.progress is observe_progress(gymnasium.make(task), task, "grid")._plans(
-            info["instance"]
-        )
+        plan, _geometry = instance_plan(task, "grid", info["instance"], "astar-lmcut", "fluents")
+        assert env.progress is plan
     assert len(plans) > 1
 
 
