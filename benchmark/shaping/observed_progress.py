@@ -66,7 +66,8 @@ class ObservedProgress(gymnasium.ObservationWrapper):
         if not isinstance(space, gymnasium.spaces.Box) or len(space.shape) != 1:
             raise BadInputError(
                 f"observe_progress: {env.spec.id if env.spec else env} has observation space "
-                f"{space}, not a flat Box; set observe_progress=None in its hyperparameter table"
+                f"{space}, not a flat Box, so its plan progress cannot be appended to it; train "
+                "this task without observe_progress (no --observe-progress, a profile without it)"
             )
         self.progress = progress
         self._plans = plans

@@ -118,3 +118,27 @@ def test_the_probe_refuses_the_option_without_a_plan(capsys):
     assert "--observe-progress shows a plan's progress; entry 'dense' has no plan" in (
         capsys.readouterr().err
     )
+
+
+def test_the_probe_refuses_the_option_on_a_dict_observation(capsys):
+    from planshape.cli import main
+
+    code = main(
+        [
+            "probe",
+            "planshape/FetchReach-v4",
+            "plan-distance/stages",
+            "--algo",
+            "SBX-SAC",
+            "--budget",
+            "64",
+            "--chunks",
+            "1",
+            "--observe-progress",
+        ]
+    )
+    assert code == 2
+    err = capsys.readouterr().err
+    assert "planshape/FetchReach-v4 has observation space Dict" in err
+    assert "train this task without observe_progress" in err
+    assert "Traceback" not in err
