@@ -29,7 +29,13 @@ import time
 from collections.abc import Sequence
 
 from planshape.planning import parse_task
-from planshape.shaping.registration import _planned, instance_plan, instance_set, task_spec
+from planshape.shaping.registration import (
+    _instance_plan,
+    _planned,
+    instance_plan,
+    instance_set,
+    task_spec,
+)
 
 TASKS = (
     "planshape/ReachRandomized-v1",
@@ -39,7 +45,7 @@ TASKS = (
 
 
 def _clear_process_caches() -> None:
-    instance_plan.cache_clear()
+    _instance_plan.cache_clear()
     _planned.cache_clear()
     parse_task.cache_clear()
 

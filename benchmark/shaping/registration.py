@@ -275,7 +275,6 @@ def _progress(model: AbstractModel, search: str, match: SubgoalMatch) -> PlanPro
     return PlanProgress(plan.subgoals, Abstraction(task, model.classifiers), match=match)
 
 
-@functools.lru_cache(maxsize=4096)
 def instance_plan(
     task: str,
     model: str,
@@ -285,7 +284,17 @@ def instance_plan(
 ) -> tuple[PlanProgress, Geometry | None]:
     """The plan progress and geometry hooks of one instance of a task-instance distribution:
     its model built, planned by Fast Downward through the plan cache and bound, once per
-    process (the shaping wrappers of every environment share them)."""
+    process (the shaping wrappers of every environment share them, however the call spells
+    its defaults)."""
+    return _instance_plan(task, model, instance, search, match)
+
+
+@functools.lru_cache(maxsize=4096)
+def _instance_plan(
+    task: str, model: str, instance: Any, search: str, match: SubgoalMatch
+) -> tuple[PlanProgress, Geometry | None]:
+    """:func:`instance_plan`, cached on one key per plan (an ``lru_cache`` keys ``f(a)`` and
+    ``f(a, default)`` apart)."""
     built = abstract_model(task_spec(task), model, instance)
     return _progress(built, search, match), built.geometry
 

@@ -66,7 +66,7 @@ def test_a_distribution_switches_to_each_episodes_plan_on_reset():
     for seed in range(4):
         _, info = env.reset(seed=seed)
         plans.add(id(env.progress))
-        plan, _geometry = instance_plan(task, "grid", info["instance"], "astar-lmcut", "fluents")
+        plan, _geometry = instance_plan(task, "grid", info["instance"])
         assert env.progress is plan
     assert len(plans) > 1
 
