@@ -38,7 +38,10 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   measured.) PPO keeps 100 (at 1 it solved nothing; on push at 10, ``planshape probe push ENTRY
   --shaping-scale 10 --budget 819200``, 5 seeds, it solves what it solves at 100:
   plan-distance/grid 0/5, its plan progress stuck at step 2 of 11 on every seed, short of the
-  pushing position, plan-path/grid 0/5, time-varying/grid 2/5). The v0 tasks keep 100, with which
+  pushing position, plan-path/grid 0/5, time-varying/grid 2/5; at 1000, time-varying/grid 2/5
+  again and plan-distance/grid 0/2, its critic explaining none of the shaped return and its plan
+  progress at 8.8-9.0 of 11 without a success; at 10000 plan-distance/grid 0/2; README, the
+  planar profile's PPO push cell). The v0 tasks keep 100, with which
   their stored runs trained. MetaWorld and gymnasium-robotics keep 100 too: on MetaWorld
   reach-v4 (``planshape probe planshape/MetaWorld-reach-v4 plan-distance/stages --algo SBX-SAC
   --budget 200000 --chunks 10 --shaping-scale S``, seed 0; success of 10 episodes every 20,000
