@@ -29,6 +29,7 @@ MODULES = (
     "planshape.harness.catalog",
     "planshape.harness.probe",
     "planshape.results.frame",
+    "planshape.results.evidence",
     "planshape.results.videos",
     "planshape.invariance.command",
 )

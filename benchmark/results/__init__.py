@@ -19,6 +19,8 @@ By job, around the typed row (:class:`~planshape.results.rows.StoredRow`):
 * :mod:`~planshape.results.figures`, :mod:`~planshape.results.plots` — the plots;
 * :mod:`~planshape.results.leaderboard` — :func:`~planshape.results.leaderboard.render_leaderboard`:
   ``LEADERBOARD.md``, ``index.html``, ``summary.json`` and the plots of a results folder;
+* :mod:`~planshape.results.evidence` — ``planshape evidence``: every rendered profile's verdicts
+  on one page (``leaderboard/EVIDENCE.md``);
 * :mod:`~planshape.results.videos` — ``planshape render``: a run's policy as an animation.
 
 Example:

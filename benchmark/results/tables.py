@@ -3,7 +3,8 @@
 A :class:`Table` is headings and rows of :class:`Cell` (its text, the number it sorts by and
 whether it is code); :mod:`planshape.results.render` writes it as Markdown or HTML. The
 tables are :func:`task_table` (one cell per entry of a task and algorithm, ranked by IQM final
-success), :func:`aggregate_table` (over tasks), :func:`verdict_table` (what every cell decides),
+success), :func:`aggregate_table` (over tasks), :func:`verdict_table` (what every cell decides)
+and :func:`evidence_table` (the same with its success means, across profiles),
 :func:`setup_table`, :func:`budget_table` and :func:`hyperparameter_table`. Numbers are
 formatted by :func:`number` and :func:`interval`.
 
@@ -39,6 +40,7 @@ __all__ = [
     "by_task_and_algo",
     "caveats",
     "entry_order",
+    "evidence_table",
     "hyperparameter_table",
     "interval",
     "missing",
@@ -317,6 +319,21 @@ def _words(status: str) -> str:
     return status.replace("-", " ")
 
 
+def _verdict_cells(check: Mapping[str, Any], *, successes: bool = False) -> tuple[Cell, ...]:
+    entry = check["outcome_entry"]
+    cells = [
+        Cell(short_task(check["task"])),
+        Cell(check["algo"]),
+        Cell(f"{check['budget']:,}", float(check["budget"])),
+        Cell(_words(check["status"])),
+        Cell(_words(check["outcome"])),
+        Cell(entry or "—", code=entry is not None),
+    ]
+    if successes:
+        cells += [_number_cell(check, f"{who}_success", 2) for who in ("entry", DENSE, SPARSE)]
+    return (*cells, _interval_cell(check, "outcome_p_improve_dense", 2))
+
+
 def verdict_table(checks: Iterable[Mapping[str, Any]]) -> Table:
     """One row per (task, algorithm) cell: its budget, budget check and shaping outcome, from
     :func:`planshape.results.verdict.budget_checks`.
@@ -329,19 +346,32 @@ def verdict_table(checks: Iterable[Mapping[str, Any]]) -> Table:
         >>> [cell.text for cell in table.rows[0]]
         ['Reach-v1', 'PPO', '4,096', 'decides', 'at least dense', 'plan/grid', '0.60 [0.30, 0.90]']
     """
-    rows = (
-        (
-            Cell(short_task(c["task"])),
-            Cell(c["algo"]),
-            Cell(f"{c['budget']:,}", float(c["budget"])),
-            Cell(_words(c["status"])),
-            Cell(_words(c["outcome"])),
-            Cell(c["outcome_entry"] or "—", code=c["outcome_entry"] is not None),
-            _interval_cell(c, "outcome_p_improve_dense", 2),
-        )
-        for c in checks
+    return _cells_table(_VERDICT_HEADINGS, (_verdict_cells(c) for c in checks))
+
+
+def evidence_table(checks: Iterable[Mapping[str, Any]]) -> Table:
+    """:func:`verdict_table` with the mean success of the outcome's entry, of dense and of
+    sparse beside it (``entry_success``, ``dense_success``, ``sparse_success`` of each check;
+    ``None``: not in the cell), for the page of every profile's verdicts
+    (:mod:`planshape.results.evidence`).
+
+    Example:
+        >>> table = evidence_table([{"task": "planshape/Push-v1", "algo": "PPO", "budget": 819200,
+        ...     "status": "decides", "outcome": "below-dense", "outcome_entry": "time-varying/grid",
+        ...     "entry_success": 0.4, "dense_success": 0.8, "sparse_success": 0.2,
+        ...     "outcome_p_improve_dense": 0.3, "outcome_p_improve_dense_low": 0.0,
+        ...     "outcome_p_improve_dense_high": 0.6}])
+        >>> [cell.text for cell in table.rows[0]][4:]
+        ['below dense', 'time-varying/grid', '0.40', '0.80', '0.20', '0.30 [0.00, 0.60]']
+    """
+    headings = (
+        *_VERDICT_HEADINGS[:6],
+        "Entry success",
+        "Dense success",
+        "Sparse success",
+        _VERDICT_HEADINGS[6],
     )
-    return _cells_table(_VERDICT_HEADINGS, rows)
+    return _cells_table(headings, (_verdict_cells(c, successes=True) for c in checks))
 
 
 # --------------------------------------------------------------------------------------------
