@@ -143,6 +143,12 @@ def _archived(name: str) -> bool:
     return name in PROFILES and bool(PROFILES[name].archived)
 
 
+def _unrendered(names: set[str]) -> list[str]:
+    from planshape.harness.profiles import PROFILES
+
+    return [name for name in PROFILES if name not in names]
+
+
 def _order(name: str) -> tuple[int, str]:
     from planshape.harness.profiles import PROFILES
 
@@ -239,6 +245,10 @@ def evidence_page(profiles: Sequence[ProfileEvidence]) -> Page:
         "gives the outcome; its success, dense's and sparse's are means over seeds."
     )
     blocks: list[Any] = [Paragraph(intro), _profiles_table(profiles)]
+    absent = _unrendered({p.name for p in profiles})
+    if absent:
+        names = ", ".join(f"`{name}`" for name in absent)
+        blocks.append(Paragraph(f"Registered profiles with no rendered results here: {names}."))
     for p in profiles:
         blocks += _profile_blocks(p)
     return Page("planshape evidence", tuple(blocks))

@@ -62,6 +62,7 @@ def test_the_page_puts_each_cells_verdict_beside_the_numbers_of_its_leaderboard(
     assert "| `default` | complete | 15 | 1 | 1 | 1 | 0 | 0 |" in page
     partial = "partial: 15 of the profile's 30 runs are stored"
     assert f"| `planar` | {partial} | 15 | 1 | 1 | 0 | 0 | 1 |" in page
+    assert "no rendered results here: `smoke`, `paper`, `full`, `metaworld`," in page
     planar = page.split("## planar")[1].split("## default-v0")[0]
     assert "Planar runs. State: partial" in planar
     assert "[planar/LEADERBOARD.md](planar/LEADERBOARD.md)" in planar
