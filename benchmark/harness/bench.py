@@ -120,6 +120,8 @@ def _bench(parser: argparse.ArgumentParser) -> Handler:
 
 
 def run_bench(args: argparse.Namespace) -> int:
+    """``planshape bench``: check the selection and the results folder, run the benchmark suite
+    (``planshape.suite``) under pytest, and render the leaderboard; returns the exit status."""
     import pytest
 
     from planshape.suite.session import parse_seeds, resolve_tasks
@@ -325,6 +327,8 @@ def _leaderboard(parser: argparse.ArgumentParser) -> Handler:
 
 
 def run_leaderboard(args: argparse.Namespace) -> int:
+    """``planshape leaderboard``: render the page, summary and plots of ``--out`` again from its
+    stored rows and print the summary table (``--json``: the summary as JSON)."""
     from planshape.results.cells import summarize
     from planshape.results.leaderboard import render_leaderboard, summary_table
     from planshape.results.render import json_ready

@@ -1101,6 +1101,7 @@ PROFILES: dict[str, Profile] = {
 
 
 def get_profile(name: str) -> Profile:
+    """The registered profile ``name``; an unknown name is bad input that lists the known ones."""
     if name not in PROFILES:
         raise UnknownIdError("profile", name, PROFILES)
     return PROFILES[name]

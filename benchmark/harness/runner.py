@@ -205,6 +205,7 @@ def _git(folder: Path, *args: str) -> str:
 
 @cache
 def package_versions() -> dict[str, str]:
+    """The installed version of each package in :data:`PACKAGES` that a run records."""
     versions = {}
     for name in PACKAGES:
         try:

@@ -227,10 +227,12 @@ def random_toy(
 
 
 def random_episodic() -> ToyProblem:
+    """A random episodic toy MDP (fixed seed 1)."""
     return random_toy(1, name="random-episodic", episodic=True)
 
 
 def random_continuing() -> ToyProblem:
+    """A random continuing toy MDP (fixed seed 2)."""
     return random_toy(2, name="random-continuing", episodic=False)
 
 
