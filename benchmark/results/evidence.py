@@ -70,8 +70,9 @@ class ProfileEvidence:
         name: the profile's name (its header's).
         folder: its results folder, relative to the results root (``.`` for the default).
         description: its header's description.
-        state: ``complete``, ``archived``, or the header's partial caveat without its prefix
-            (``105 of the profile's 155 runs are stored; ...``).
+        state: ``archived`` (:attr:`planshape.harness.profiles.Profile.archived`), the header's
+            partial caveat (``partial: 105 of the profile's 155 runs are stored; ...``), or
+            ``complete``.
         n_runs: the runs its leaderboard was rendered from.
         checks: its cells' budget checks and shaping outcomes (``budget_checks``).
         rows: its summary rows, one per (task, algorithm, entry) (``per_task``).
