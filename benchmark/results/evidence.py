@@ -10,7 +10,10 @@ the default profile's, and one folder down, every other profile's) into one page
   of its cells decide and what those show;
 * per profile, the tally sentence of its own page and one row per cell with the mean success of
   the entry that gives the outcome, of dense and of sparse, as the profile's leaderboard counts
-  success.
+  success;
+* for profiles that run the same cells (variants of one experiment, such as ``metaworld`` and
+  ``metaworld-s10``), each entry's mean success under each of them side by side
+  (:mod:`planshape.results.variants`).
 
 Nothing is recomputed: the numbers are the summaries', so the page agrees with every profile's
 ``LEADERBOARD.md`` by construction. ``planshape evidence leaderboard --to
@@ -54,6 +57,7 @@ from planshape.errors import BadInputError
 from planshape.results.outcome import tally
 from planshape.results.page import Heading, Page, Paragraph
 from planshape.results.tables import Cell, Table, evidence_table, missing
+from planshape.results.variants import variants_blocks
 
 __all__ = ["ProfileEvidence", "evidence_markdown", "evidence_page", "read_profiles"]
 
@@ -232,7 +236,8 @@ def _profile_blocks(p: ProfileEvidence) -> list[Any]:
 
 
 def evidence_page(profiles: Sequence[ProfileEvidence]) -> Page:
-    """The page: how it was made, the table of profiles, then each profile's cells."""
+    """The page: how it was made, the table of profiles, each profile's cells, then the
+    entries of profiles that run the same cells side by side."""
     intro = (
         "Every profile's verdicts, gathered from the rendered summaries by `planshape "
         "evidence`; "
@@ -252,6 +257,7 @@ def evidence_page(profiles: Sequence[ProfileEvidence]) -> Page:
         blocks.append(Paragraph(f"Registered profiles with no rendered results here: {names}."))
     for p in profiles:
         blocks += _profile_blocks(p)
+    blocks += variants_blocks(profiles)
     return Page("planshape evidence", tuple(blocks))
 
 

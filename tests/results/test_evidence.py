@@ -18,13 +18,17 @@ LEADERBOARD = Path(__file__).resolve().parents[2] / "leaderboard"
 COMMITTED = LEADERBOARD / "EVIDENCE.md"
 
 
-def _render(out: Path, profile: str, caveats: list[str], plan_success: float) -> None:
+def _render(
+    out: Path, profile: str, caveats: list[str], plan_success: float, budget: int = 1000
+) -> None:
     """A rendered profile of one 5-seed reach cell: dense 1.0, sparse 0.0, one potential."""
     rows = []
     for seed in range(5):
-        rows += make_run(entry="dense", seed=seed, final_success=1.0)
-        rows += make_run(entry="sparse", seed=seed, final_success=0.0)
-        rows += make_run(entry="plan-based/grid", seed=seed, final_success=plan_success)
+        rows += make_run(entry="dense", seed=seed, final_success=1.0, budget=budget)
+        rows += make_run(entry="sparse", seed=seed, final_success=0.0, budget=budget)
+        rows += make_run(
+            entry="plan-based/grid", seed=seed, final_success=plan_success, budget=budget
+        )
     header = {"profile": profile, "description": f"{profile} runs", "caveats": caveats}
     render_leaderboard(rows, out, header, reps=50)
 
@@ -71,6 +75,31 @@ def test_the_page_puts_each_cells_verdict_beside_the_numbers_of_its_leaderboard(
     assert "| decides | below dense | `plan-based/grid` | 0.00 | 1.00 | 0.00 |" in row
     summary = json.loads((rendered / "planar" / "summary.json").read_text())
     assert summary["budget_checks"][0]["outcome"] == "below-dense"
+
+
+def test_profiles_that_run_the_same_cells_show_each_entry_side_by_side(rendered):
+    """default and planar share the reach cell and differ in plan-based's runs; the archived
+    default-v0 is left out."""
+    section = evidence_markdown(rendered).split("## Profiles that run the same cells")[1]
+    assert "| Task | Algorithm | Entry | default | planar |" in section
+    assert "| Reach-v0 | PPO | `plan-based/grid` | 1.00 | 0.00 |" in section
+    assert "| Reach-v0 | PPO | `dense` | 1.00 | 1.00 |" in section  # for reference
+    assert "default-v0" not in section
+
+
+def test_entries_whose_runs_are_the_same_everywhere_have_no_row(tmp_path):
+    _render(tmp_path, "default", [], plan_success=1.0)
+    _render(tmp_path / "planar", "planar", [], plan_success=1.0)  # the same runs' numbers
+    _render(tmp_path / "paper", "paper", [], plan_success=0.0, budget=2000)  # another cell
+    page = evidence_markdown(tmp_path)
+    assert "## Profiles that run the same cells" not in page
+    _render(tmp_path / "planar", "planar", [], plan_success=0.0, budget=2000)
+    # planar now shares paper's cell, not default's, and their plan-based runs are the same
+    assert "## Profiles that run the same cells" not in evidence_markdown(tmp_path)
+    _render(tmp_path / "planar", "planar", [], plan_success=1.0, budget=2000)
+    section = evidence_markdown(tmp_path).split("## Profiles that run the same cells")[1]
+    assert "| Task | Algorithm | Entry | planar | paper |" in section
+    assert "| Reach-v0 | PPO | `plan-based/grid` | 1.00 | 0.00 |" in section
 
 
 def test_the_command_prints_or_writes_the_page(rendered, tmp_path, capsys):
