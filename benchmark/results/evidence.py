@@ -90,17 +90,17 @@ class ProfileEvidence:
     checks: tuple[Mapping[str, Any], ...]
     rows: tuple[Mapping[str, Any], ...]
 
-    def success(self, task: str, algo: str, entry: str | None) -> float | None:
-        """The mean success of ``entry`` in the (``task``, ``algo``) cell, or ``None``."""
+    def row(self, task: str, algo: str, entry: str | None) -> Mapping[str, Any] | None:
+        """The summary row of ``entry`` in the (``task``, ``algo``) cell, or ``None``."""
         return next(
-            (
-                float(r["success_mean"])
-                for r in self.rows
-                if (r["task"], r["algo"], r["entry"]) == (task, algo, entry)
-                and not missing(r["success_mean"])
-            ),
+            (r for r in self.rows if (r["task"], r["algo"], r["entry"]) == (task, algo, entry)),
             None,
         )
+
+    def success(self, task: str, algo: str, entry: str | None) -> float | None:
+        """The mean success of ``entry`` in the (``task``, ``algo``) cell, or ``None``."""
+        row = self.row(task, algo, entry)
+        return None if row is None or missing(row["success_mean"]) else float(row["success_mean"])
 
     def counts(self) -> dict[str, int]:
         """Its cells: ``cells``, ``decides``, and among the deciding cells each outcome."""

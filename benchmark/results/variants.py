@@ -18,7 +18,9 @@ Entries whose runs are the same wherever they are stored (a profile that re-exec
 cells repeats every number) have no row, and a family with no such entry no table.
 
 Example:
-    >>> from types import SimpleNamespace as Profile
+    >>> from functools import partial
+    >>> from planshape.results.evidence import ProfileEvidence
+    >>> Profile = partial(ProfileEvidence, folder=".", description="", n_runs=10)
     >>> def row(entry, success, end, seeds=5):
     ...     return {"task": "planshape/MetaWorld-reach-v4", "algo": "SBX-SAC", "entry": entry,
     ...             "budget": 200000, "seeds": list(range(seeds)), "n_seeds": seeds,
@@ -39,6 +41,7 @@ Example:
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -80,10 +83,7 @@ def families(profiles: Sequence[ProfileEvidence]) -> list[tuple[ProfileEvidence,
 
 
 def _shared_cells(family: Sequence[ProfileEvidence]) -> list[CellKey]:
-    counts: dict[CellKey, int] = {}
-    for profile in family:
-        for cell in _cells(profile):
-            counts[cell] = counts.get(cell, 0) + 1
+    counts = Counter(cell for profile in family for cell in _cells(profile))
     return sorted(cell for cell, n in counts.items() if n > 1)
 
 
@@ -102,15 +102,8 @@ def _number_text(row: Mapping[str, Any] | None) -> Cell:
 
 def _row_of(profile: ProfileEvidence, cell: CellKey, entry: str) -> Mapping[str, Any] | None:
     task, algo, budget = cell
-    return next(
-        (
-            r
-            for r in profile.rows
-            if (r["task"], r["algo"], r["entry"]) == (task, algo, entry)
-            and int(r.get("budget", budget)) == budget
-        ),
-        None,
-    )
+    row = profile.row(task, algo, entry)
+    return row if row is not None and int(row.get("budget", budget)) == budget else None
 
 
 def _runs_fingerprint(row: Mapping[str, Any] | None) -> tuple[Any, ...] | None:
