@@ -847,10 +847,11 @@ _METAWORLD_SAC_EVAL_EVERY = 20_000
 #: the tasks whose plans move an object after the hand is in place: there ``plan-distance``
 #: measures only the hand's offset from a place that moves with the object (under the scripted
 #: expert φ rises over that step by 17 % and 18 % of what the drawer's and window's travel is
-#: worth, and by 22 % of the button's while it is pressed in; README) and ``plan-distance-sum``
-#: measures the object too (≥ 90 %; tests/tasks/test_metaworld.py). On reach-v4 they are equal.
-#: What the 5-seed runs measured is on leaderboard/metaworld and in the README ("MetaWorld with
-#: SAC"), derived from the stored runs, not copied here.
+#: worth, and by 22 % of the button's while it is pressed in; leaderboard/METAWORLD.md) and
+#: ``plan-distance-sum`` measures the object too (≥ 90 %; tests/tasks/test_metaworld.py). On
+#: reach-v4 they are equal.
+#: What the 5-seed runs measured is on leaderboard/metaworld and in leaderboard/METAWORLD.md,
+#: derived from the stored runs, not copied here.
 METAWORLD_OBJECT_TASKS = tuple(t for t in METAWORLD_SAC_BUDGETS if "reach" not in t)
 #: button-press-topdown's second geometry, ``stages-above`` (planshape.tasks.metaworld.button):
 #: ``stages`` places only the hand's horizontal offset from the button, and a hand moved

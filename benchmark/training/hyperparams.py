@@ -63,7 +63,7 @@ is also the shaping γ of every shaped entry (correctness rule 1).
   its goal, untouched, throughout) and 0.7 (seed 1: 0.6 from 100,000), against 0.6 and 0.6 at
   100, where dense reads 1.0 at 60,000-100,000 on every seed (0.96 at the end): no better at
   10. The metaworld profile keeps 100; the metaworld-s10 profile (planshape.harness.profiles)
-  runs its cells at 10 with 5 seeds (README, "The metaworld-s10 profile").
+  runs its cells at 10 with 5 seeds (leaderboard/METAWORLD.md, its metaworld-s10 section).
 * ``observe_progress`` (no table sets it; the metaworld-progress profile does): the learner
   sees max_idx / n after the observation (:mod:`planshape.shaping.observed_progress`). An
   exploratory probe suggested it: button-press plan-distance-sum/stages at 10, seed 2, whose
