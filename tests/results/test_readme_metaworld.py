@@ -31,6 +31,19 @@ def _table_rows() -> list[list[str]]:
     return [[c.strip() for c in line.strip("|").split("|")] for line in lines[1:]]
 
 
+def _readme_name(task: str) -> str:
+    """How the table names a task: its id without namespace, ``MetaWorld-`` or ``-v3``.
+
+    >>> _readme_name("planshape/MetaWorld-drawer-close-v3")
+    'drawer-close'
+    """
+    return task.replace("-v3", "").removeprefix("planshape/MetaWorld-")
+
+
+def _row_name(row: list[str]) -> str:
+    return row[0].split(" (")[0]
+
+
 def _cell(profile: ProfileEvidence, task: str) -> str:
     check = next(c for c in profile.checks if c["task"] == task and c["algo"] == ALGO)
     entry = check["outcome_entry"]
@@ -46,19 +59,14 @@ def profiles() -> dict[str, ProfileEvidence]:
 
 def test_the_table_has_one_row_per_task_of_the_profile(profiles):
     tasks = {c["task"] for c in profiles["metaworld"].checks}
-    named = {f"planshape/MetaWorld-{row[0].split(' (')[0]}" for row in _table_rows()}
-    assert {t.replace("-v3", "") for t in tasks} == named
+    assert {_readme_name(t) for t in tasks} == {_row_name(row) for row in _table_rows()}
 
 
 @pytest.mark.parametrize("index", range(6))
 def test_each_row_reads_as_the_summaries_do(profiles, index):
     row = _table_rows()[index]
     name, budget = re.fullmatch(r"(\S+) \(([\d,]+)\)", row[0]).groups()
-    task = next(
-        c["task"]
-        for c in profiles["metaworld"].checks
-        if c["task"].replace("-v3", "") == f"planshape/MetaWorld-{name}"
-    )
+    task = next(c["task"] for c in profiles["metaworld"].checks if _readme_name(c["task"]) == name)
     first = profiles["metaworld"]
     check = next(c for c in first.checks if c["task"] == task)
     assert int(budget.replace(",", "")) == check["budget"], row[0]
