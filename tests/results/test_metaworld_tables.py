@@ -1,0 +1,165 @@
+"""The MetaWorld tables say what the stored runs and rendered summaries say.
+
+The README's table gives each task's dense and sparse success and, under each of the three
+MetaWorld profiles, the shaping outcome and the planning-derived entry that gives it with that
+entry's mean success. ``leaderboard/METAWORLD.md``'s ``metaworld-s10`` table gives each entry's
+final success per seed and its mean, end-of-episode success and curve area at φ × 10 beside the
+same numbers at φ × 100 (the ``metaworld`` profile) and dense's. Both grow by hand as entries
+are adopted; these tests keep them from drifting away from the runs. Figures are read to two
+places, rounding halves up as a person rounding the page's three-place figures does.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from decimal import ROUND_HALF_UP, Decimal
+from pathlib import Path
+
+import pytest
+
+from planshape.results.evidence import ProfileEvidence, read_profiles
+
+ROOT = Path(__file__).resolve().parents[2]
+README = ROOT / "README.md"
+METAWORLD_DOC = ROOT / "leaderboard" / "METAWORLD.md"
+S10_TABLE_HEADER = "| task, entry (5 seeds) | seeds 0–4 at 10 |"
+HEADING = "### MetaWorld with SAC"
+PROFILES = ("metaworld", "metaworld-s10", "metaworld-progress")
+#: how the table words each :data:`planshape.results.outcome.Status`
+LABELS = {"at-least-dense": "at least dense", "faster": "faster", "below-dense": "below dense"}
+ALGO = "SBX-SAC"
+#: the s10 table's figures after the seeds: mean success, end-of-episode success, curve area
+FIGURES = ("success_mean", "success_end_mean", "curve_area_mean")
+
+
+def _two(value: float) -> str:
+    """A figure as the page gives it (three places), then to two, halves rounded up.
+
+    >>> _two(0.615), _two(0.6149999999999999), _two(0.614), _two(1.0)
+    ('0.62', '0.62', '0.61', '1.00')
+    """
+    on_page = Decimal(repr(value)).quantize(Decimal("0.001"), rounding=ROUND_HALF_UP)
+    return str(on_page.quantize(Decimal("0.01"), rounding=ROUND_HALF_UP))
+
+
+def _cells(line: str) -> list[str]:
+    return [c.strip() for c in line.strip("|").split("|")]
+
+
+def _readme_table_rows() -> list[list[str]]:
+    text = README.read_text(encoding="utf-8")
+    assert HEADING in text, f"README.md has no {HEADING!r} section"
+    section = text.split(HEADING, 1)[1].split("\n### ", 1)[0]
+    lines = [line for line in section.splitlines() if line.startswith("| ")]
+    assert lines and "`metaworld`" in lines[0], "the section's table has moved or lost its header"
+    return [_cells(line) for line in lines[1:]]
+
+
+def _s10_table_rows() -> list[list[str]]:
+    """METAWORLD.md's ``metaworld-s10`` table, bold marks removed, header and rule skipped."""
+    lines = METAWORLD_DOC.read_text(encoding="utf-8").splitlines()
+    starts = [i for i, line in enumerate(lines) if line.startswith(S10_TABLE_HEADER)]
+    assert len(starts) == 1, f"METAWORLD.md has {len(starts)} tables headed {S10_TABLE_HEADER!r}"
+    rows = []
+    for line in lines[starts[0] + 2 :]:
+        if not line.startswith("|"):
+            break
+        rows.append(_cells(line.replace("**", "")))
+    return rows
+
+
+def _final_success_by_seed(profile: str) -> dict[tuple[str, str], dict[int, float]]:
+    """Each (task, entry)'s final any-step success per seed, from the profile's run files."""
+    finals: dict[tuple[str, str], dict[int, float]] = {}
+    for path in (ROOT / "leaderboard" / profile / "runs").glob("*.jsonl"):
+        last = json.loads(path.read_text(encoding="utf-8").splitlines()[-1])
+        if last.get("final") and last["algo"] == ALGO:
+            finals.setdefault((last["task"], last["entry"]), {})[last["seed"]] = last[
+                "success_any_rate"
+            ]
+    return finals
+
+
+def _readme_name(task: str) -> str:
+    """How the table names a task: its id without namespace, ``MetaWorld-`` or ``-v3``.
+
+    >>> _readme_name("planshape/MetaWorld-drawer-close-v3")
+    'drawer-close'
+    """
+    return task.replace("-v3", "").removeprefix("planshape/MetaWorld-")
+
+
+def _row_name(row: list[str]) -> str:
+    return row[0].split(" (")[0]
+
+
+def _task_named(profiles: dict[str, ProfileEvidence], name: str) -> str:
+    return next(c["task"] for c in profiles["metaworld"].checks if _readme_name(c["task"]) == name)
+
+
+def _cell(profile: ProfileEvidence, task: str) -> str:
+    check = next(c for c in profile.checks if c["task"] == task and c["algo"] == ALGO)
+    entry = check["outcome_entry"]
+    success = profile.success(task, ALGO, entry)
+    return f"{LABELS[check['outcome']]}: `{entry}` {_two(success)}"
+
+
+@pytest.fixture(scope="module")
+def profiles() -> dict[str, ProfileEvidence]:
+    found = {p.name: p for p in read_profiles(ROOT / "leaderboard")}
+    return {name: found[name] for name in PROFILES}
+
+
+def test_the_table_has_one_row_per_task_of_the_profile(profiles):
+    tasks = {c["task"] for c in profiles["metaworld"].checks}
+    assert {_readme_name(t) for t in tasks} == {_row_name(row) for row in _readme_table_rows()}
+
+
+@pytest.mark.parametrize("index", range(6))
+def test_each_row_reads_as_the_summaries_do(profiles, index):
+    row = _readme_table_rows()[index]
+    name, budget = re.fullmatch(r"(\S+) \(([\d,]+)\)", row[0]).groups()
+    task = _task_named(profiles, name)
+    first = profiles["metaworld"]
+    check = next(c for c in first.checks if c["task"] == task)
+    assert int(budget.replace(",", "")) == check["budget"], row[0]
+    assert row[1] == _two(first.success(task, ALGO, "dense")), f"{name}: dense"
+    assert row[2] == _two(first.success(task, ALGO, "sparse")), f"{name}: sparse"
+    expected = [_cell(profiles[p], task) for p in PROFILES]
+    assert row[3:] == expected, f"{name}: the README's cells differ from the summaries"
+
+
+def test_the_s10_table_names_each_stored_entry_of_a_deciding_cell_once(profiles):
+    """Drawer-close, which separates little, is told in prose, not in the table."""
+    named = []
+    for row in _s10_table_rows():
+        match = re.fullmatch(r"(\S+), `([^`]+)`(?: \(code \w+\))?", row[0])
+        assert match, f"METAWORLD.md: cannot read the s10 table's row {row[0]!r}"
+        named.append((_task_named(profiles, match[1]), match[2]))
+    s10 = profiles["metaworld-s10"]
+    deciding = {c["task"] for c in s10.checks if c["status"] != "separates-little"}
+    shaped = {
+        (r["task"], r["entry"])
+        for r in s10.rows
+        if r["algo"] == ALGO and r["task"] in deciding and r["entry"] not in ("sparse", "dense")
+    }
+    assert len(named) == len(set(named)), "a row is repeated"
+    assert set(named) == shaped, "the table's rows and the profile's shaped entries differ"
+
+
+def test_each_s10_row_reads_as_the_runs_and_summaries_do(profiles):
+    finals = _final_success_by_seed("metaworld-s10")
+    for row in _s10_table_rows():
+        name, entry = re.fullmatch(r"(\S+), `([^`]+)`(?: \(code \w+\))?", row[0]).groups()
+        task = _task_named(profiles, name)
+        at_10 = profiles["metaworld-s10"].row(task, ALGO, entry)
+        at_100 = profiles["metaworld"].row(task, ALGO, entry)
+        dense = profiles["metaworld"].row(task, ALGO, "dense")
+        seeds = finals[(task, entry)]
+        expected = [
+            " ".join(f"{seeds[seed]:.1f}" for seed in sorted(seeds)),
+            *(f"{_two(at_10[key])} ({_two(at_100[key])})" for key in FIGURES),
+            f"{_two(dense['success_mean'])}, {_two(dense['curve_area_mean'])}",
+        ]
+        assert row[1:] == expected, f"METAWORLD.md, s10 table, {row[0]}"
