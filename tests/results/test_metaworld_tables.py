@@ -4,8 +4,10 @@ The README's table gives each task's dense and sparse success and, under each of
 MetaWorld profiles, the shaping outcome and the planning-derived entry that gives it with that
 entry's mean success. ``leaderboard/METAWORLD.md``'s ``metaworld-s10`` table gives each entry's
 final success per seed and its mean, end-of-episode success and curve area at φ × 10 beside the
-same numbers at φ × 100 (the ``metaworld`` profile) and dense's. Both grow by hand as entries
-are adopted; these tests keep them from drifting away from the runs. Figures are read to two
+same numbers at φ × 100 (the ``metaworld`` profile) and dense's; and its ``metaworld`` section
+has one table per task with every entry's final success per seed (any step and episode's end),
+mean, IQM with its interval and curve area. They are written by hand as entries are adopted;
+these tests keep them from drifting away from the runs. Figures are read to two
 places, rounding halves up as a person rounding the page's three-place figures does.
 """
 
@@ -24,6 +26,7 @@ ROOT = Path(__file__).resolve().parents[2]
 README = ROOT / "README.md"
 METAWORLD_DOC = ROOT / "leaderboard" / "METAWORLD.md"
 S10_TABLE_HEADER = "| task, entry (5 seeds) | seeds 0–4 at 10 |"
+TASK_TABLE_HEADER = "| entry | seeds 0–4, any step"
 HEADING = "### MetaWorld with SAC"
 PROFILES = ("metaworld", "metaworld-s10", "metaworld-progress")
 #: how the table words each :data:`planshape.results.outcome.Status`
@@ -44,7 +47,8 @@ def _two(value: float) -> str:
 
 
 def _cells(line: str) -> list[str]:
-    return [c.strip() for c in line.strip("|").split("|")]
+    """A markdown table line's cells; an escaped pipe, ``\\|``, stays inside its cell."""
+    return [c.strip() for c in re.split(r"(?<!\\)\|", line.strip().strip("|"))]
 
 
 def _readme_table_rows() -> list[list[str]]:
@@ -56,29 +60,45 @@ def _readme_table_rows() -> list[list[str]]:
     return [_cells(line) for line in lines[1:]]
 
 
-def _s10_table_rows() -> list[list[str]]:
-    """METAWORLD.md's ``metaworld-s10`` table, bold marks removed, header and rule skipped."""
+def _doc_tables(header: str) -> list[tuple[str, list[list[str]]]]:
+    """Each METAWORLD.md table whose header starts so, after the lead of the paragraph that
+    names its task (``**TASK is complete``, or "" if none comes before it), with its rows:
+    bold marks removed, header and rule skipped."""
     lines = METAWORLD_DOC.read_text(encoding="utf-8").splitlines()
-    starts = [i for i, line in enumerate(lines) if line.startswith(S10_TABLE_HEADER)]
-    assert len(starts) == 1, f"METAWORLD.md has {len(starts)} tables headed {S10_TABLE_HEADER!r}"
-    rows = []
-    for line in lines[starts[0] + 2 :]:
-        if not line.startswith("|"):
-            break
-        rows.append(_cells(line.replace("**", "")))
-    return rows
+    tables, lead = [], ""
+    for i, line in enumerate(lines):
+        if found := re.match(r"\*\*(\S+) is complete", line):
+            lead = found[1]
+        if not line.startswith(header):
+            continue
+        rows = []
+        for row in lines[i + 2 :]:
+            if not row.startswith("|"):
+                break
+            rows.append(_cells(row.replace("**", "")))
+        tables.append((lead, rows))
+    return tables
 
 
-def _final_success_by_seed(profile: str) -> dict[tuple[str, str], dict[int, float]]:
-    """Each (task, entry)'s final any-step success per seed, from the profile's run files."""
-    finals: dict[tuple[str, str], dict[int, float]] = {}
+def _doc_table_rows(header: str) -> list[list[str]]:
+    """The one METAWORLD.md table whose header starts so."""
+    tables = _doc_tables(header)
+    assert len(tables) == 1, f"METAWORLD.md has {len(tables)} tables headed {header!r}"
+    return tables[0][1]
+
+
+def _final_rows_by_seed(profile: str) -> dict[tuple[str, str], dict[int, dict]]:
+    """Each (task, entry)'s final evaluation row per seed, from the profile's run files."""
+    finals: dict[tuple[str, str], dict[int, dict]] = {}
     for path in (ROOT / "leaderboard" / profile / "runs").glob("*.jsonl"):
         last = json.loads(path.read_text(encoding="utf-8").splitlines()[-1])
         if last.get("final") and last["algo"] == ALGO:
-            finals.setdefault((last["task"], last["entry"]), {})[last["seed"]] = last[
-                "success_any_rate"
-            ]
+            finals.setdefault((last["task"], last["entry"]), {})[last["seed"]] = last
     return finals
+
+
+def _per_seed(rows: dict[int, dict], key: str) -> str:
+    return " ".join(f"{rows[seed][key]:.1f}" for seed in sorted(rows))
 
 
 def _readme_name(task: str) -> str:
@@ -133,7 +153,7 @@ def test_each_row_reads_as_the_summaries_do(profiles, index):
 def test_the_s10_table_names_each_stored_entry_of_a_deciding_cell_once(profiles):
     """Drawer-close, which separates little, is told in prose, not in the table."""
     named = []
-    for row in _s10_table_rows():
+    for row in _doc_table_rows(S10_TABLE_HEADER):
         match = re.fullmatch(r"(\S+), `([^`]+)`(?: \(code \w+\))?", row[0])
         assert match, f"METAWORLD.md: cannot read the s10 table's row {row[0]!r}"
         named.append((_task_named(profiles, match[1]), match[2]))
@@ -149,17 +169,44 @@ def test_the_s10_table_names_each_stored_entry_of_a_deciding_cell_once(profiles)
 
 
 def test_each_s10_row_reads_as_the_runs_and_summaries_do(profiles):
-    finals = _final_success_by_seed("metaworld-s10")
-    for row in _s10_table_rows():
+    finals = _final_rows_by_seed("metaworld-s10")
+    for row in _doc_table_rows(S10_TABLE_HEADER):
         name, entry = re.fullmatch(r"(\S+), `([^`]+)`(?: \(code \w+\))?", row[0]).groups()
         task = _task_named(profiles, name)
         at_10 = profiles["metaworld-s10"].row(task, ALGO, entry)
         at_100 = profiles["metaworld"].row(task, ALGO, entry)
         dense = profiles["metaworld"].row(task, ALGO, "dense")
-        seeds = finals[(task, entry)]
         expected = [
-            " ".join(f"{seeds[seed]:.1f}" for seed in sorted(seeds)),
+            _per_seed(finals[(task, entry)], "success_any_rate"),
             *(f"{_two(at_10[key])} ({_two(at_100[key])})" for key in FIGURES),
             f"{_two(dense['success_mean'])}, {_two(dense['curve_area_mean'])}",
         ]
         assert row[1:] == expected, f"METAWORLD.md, s10 table, {row[0]}"
+
+
+def test_metaworld_has_one_table_per_task(profiles):
+    named = [name for name, _ in _doc_tables(TASK_TABLE_HEADER)]
+    tasks = {_readme_name(c["task"]) for c in profiles["metaworld"].checks}
+    assert sorted(named) == sorted(tasks), "each `metaworld` task has one table after its lead"
+
+
+@pytest.mark.parametrize("index", range(6))
+def test_each_metaworld_table_reads_as_the_runs_and_summary_do(profiles, index):
+    """A ``metaworld`` task's table: every entry of the cell, per seed and in sum."""
+    name, table = _doc_tables(TASK_TABLE_HEADER)[index]
+    task = _task_named(profiles, name)
+    finals = _final_rows_by_seed("metaworld")
+    stored = {entry for stored_task, entry in finals if stored_task == task}
+    assert {row[0].strip("`") for row in table} == stored, f"{name}: the table's entries differ"
+    for row in table:
+        entry = row[0].strip("`")
+        seeds = finals[(task, entry)]
+        summary = profiles["metaworld"].row(task, ALGO, entry)
+        expected = [
+            _per_seed(seeds, "success_any_rate") + " \\| " + _per_seed(seeds, "success_rate"),
+            f"{_two(summary['success_mean'])} ({_two(summary['success_end_mean'])})",
+            f"{_two(summary['success_iqm'])} [{_two(summary['success_iqm_low'])}, "
+            f"{_two(summary['success_iqm_high'])}]",
+            _two(summary["curve_area_mean"]),
+        ]
+        assert row[1:] == expected, f"METAWORLD.md, metaworld's {name} table, {entry}"
