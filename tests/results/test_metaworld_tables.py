@@ -102,7 +102,7 @@ def _per_seed(rows: dict[int, dict], key: str) -> str:
 
 
 def _readme_name(task: str) -> str:
-    """How the table names a task: its id without namespace, ``MetaWorld-`` or ``-v3``.
+    """How the tables name a task: its id without namespace, ``MetaWorld-`` or ``-v3``.
 
     >>> _readme_name("planshape/MetaWorld-drawer-close-v3")
     'drawer-close'
