@@ -13,14 +13,15 @@ places, rounding halves up as a person rounding the page's three-place figures d
 
 from __future__ import annotations
 
-import json
 import re
 from decimal import ROUND_HALF_UP, Decimal
 from pathlib import Path
 
 import pytest
 
+from planshape.results.cells import final_rows
 from planshape.results.evidence import ProfileEvidence, read_profiles
+from planshape.results.rows import load_rows
 
 ROOT = Path(__file__).resolve().parents[2]
 README = ROOT / "README.md"
@@ -90,9 +91,8 @@ def _doc_table_rows(header: str) -> list[list[str]]:
 def _final_rows_by_seed(profile: str) -> dict[tuple[str, str], dict[int, dict]]:
     """Each (task, entry)'s final evaluation row per seed, from the profile's run files."""
     finals: dict[tuple[str, str], dict[int, dict]] = {}
-    for path in (ROOT / "leaderboard" / profile / "runs").glob("*.jsonl"):
-        last = json.loads(path.read_text(encoding="utf-8").splitlines()[-1])
-        if last.get("final") and last["algo"] == ALGO:
+    for last in final_rows(load_rows(ROOT / "leaderboard" / profile)):
+        if last["algo"] == ALGO:
             finals.setdefault((last["task"], last["entry"]), {})[last["seed"]] = last
     return finals
 
@@ -116,6 +116,13 @@ def _row_name(row: list[str]) -> str:
 
 def _task_named(profiles: dict[str, ProfileEvidence], name: str) -> str:
     return next(c["task"] for c in profiles["metaworld"].checks if _readme_name(c["task"]) == name)
+
+
+def _s10_row_key(profiles: dict[str, ProfileEvidence], row: list[str]) -> tuple[str, str]:
+    """The (task, entry) an s10 table row names, as in "window-open, `plan-based/stages`"."""
+    match = re.fullmatch(r"(\S+), `([^`]+)`(?: \(code \w+\))?", row[0])
+    assert match, f"METAWORLD.md: cannot read the s10 table's row {row[0]!r}"
+    return _task_named(profiles, match[1]), match[2]
 
 
 def _cell(profile: ProfileEvidence, task: str) -> str:
@@ -152,11 +159,7 @@ def test_each_row_reads_as_the_summaries_do(profiles, index):
 
 def test_the_s10_table_names_each_stored_entry_of_a_deciding_cell_once(profiles):
     """Drawer-close, which separates little, is told in prose, not in the table."""
-    named = []
-    for row in _doc_table_rows(S10_TABLE_HEADER):
-        match = re.fullmatch(r"(\S+), `([^`]+)`(?: \(code \w+\))?", row[0])
-        assert match, f"METAWORLD.md: cannot read the s10 table's row {row[0]!r}"
-        named.append((_task_named(profiles, match[1]), match[2]))
+    named = [_s10_row_key(profiles, row) for row in _doc_table_rows(S10_TABLE_HEADER)]
     s10 = profiles["metaworld-s10"]
     deciding = {c["task"] for c in s10.checks if c["status"] != "separates-little"}
     shaped = {
@@ -171,8 +174,7 @@ def test_the_s10_table_names_each_stored_entry_of_a_deciding_cell_once(profiles)
 def test_each_s10_row_reads_as_the_runs_and_summaries_do(profiles):
     finals = _final_rows_by_seed("metaworld-s10")
     for row in _doc_table_rows(S10_TABLE_HEADER):
-        name, entry = re.fullmatch(r"(\S+), `([^`]+)`(?: \(code \w+\))?", row[0]).groups()
-        task = _task_named(profiles, name)
+        task, entry = _s10_row_key(profiles, row)
         at_10 = profiles["metaworld-s10"].row(task, ALGO, entry)
         at_100 = profiles["metaworld"].row(task, ALGO, entry)
         dense = profiles["metaworld"].row(task, ALGO, "dense")
