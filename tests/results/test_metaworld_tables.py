@@ -6,7 +6,8 @@ entry's mean success. ``leaderboard/METAWORLD.md``'s ``metaworld-s10`` table giv
 final success per seed and its mean, end-of-episode success and curve area at φ × 10 beside the
 same numbers at φ × 100 (the ``metaworld`` profile) and dense's; and its ``metaworld`` section
 has one table per task with every entry's final success per seed (any step and episode's end),
-mean, IQM with its interval and curve area. They are written by hand as entries are adopted;
+mean, IQM with its interval and curve area. Both documents also say how many of its runs each
+partial profile holds ("150 of its 155 runs"). They are written by hand as entries are adopted;
 these tests keep them from drifting away from the runs. Figures are read to two
 places, rounding halves up as a person rounding the page's three-place figures does.
 """
@@ -212,3 +213,57 @@ def test_each_metaworld_table_reads_as_the_runs_and_summary_do(profiles, index):
             _two(summary["curve_area_mean"]),
         ]
         assert row[1:] == expected, f"METAWORLD.md, metaworld's {name} table, {entry}"
+
+
+#: "150 of 155", "150 of its 155", "145 of the profile's 155": a count of a profile's stored runs
+STORED_COUNT = re.compile(r"\b(\d+) of (?:its |their |the profile's )?(\d+)\b")
+#: a count of runs, not of tasks or cells ("3 of 6"): every MetaWorld profile plans 155 runs
+FEWEST_PLANNED = 100
+#: the profiles that can be partial, as the documents name them
+PARTIAL_NAMES = re.compile(r"`(metaworld-s10|metaworld-progress)`")
+
+
+def _near(text: str, match: re.Match[str]) -> str:
+    """The words around a match, on one line, to say where a failing count stands."""
+    return " ".join(text[max(match.start() - 40, 0) : match.end() + 20].split())
+
+
+def _counts_in_readme() -> list[tuple[str, int, int, str]]:
+    """Each (profile, stored, planned, where) the README states: a profile table row's count
+    belongs to the row's profile, any other to the partial profile named last before it in its
+    paragraph."""
+    found = []
+    for paragraph in README.read_text(encoding="utf-8").split("\n\n"):
+        for line in paragraph.splitlines() if paragraph.startswith("| ") else [paragraph]:
+            row = re.match(r"\| `([\w-]+)` \|", line)
+            for count in STORED_COUNT.finditer(line):
+                before = PARTIAL_NAMES.findall(line[: count.start()])
+                name = row[1] if row else (before[-1] if before else None)
+                if name in PROFILES and int(count[2]) >= FEWEST_PLANNED:
+                    found.append((name, int(count[1]), int(count[2]), _near(line, count)))
+    return found
+
+
+def _counts_in_doc() -> list[tuple[str, int, int, str]]:
+    """Each (profile, stored, planned, where) METAWORLD.md states: its section's profile."""
+    found = []
+    for section in METAWORLD_DOC.read_text(encoding="utf-8").split("\n## ")[1:]:
+        heading = re.match(r"`([\w-]+)`", section)
+        for count in STORED_COUNT.finditer(section):
+            if heading and int(count[2]) >= FEWEST_PLANNED:
+                name = heading[1]
+                found.append((name, int(count[1]), int(count[2]), _near(section, count)))
+    return found
+
+
+def test_every_count_of_stored_runs_is_the_profiles(profiles):
+    """A count such as "145 of its 155 runs", written by hand at each adoption; each partial
+    profile's count is stated somewhere."""
+    stated = _counts_in_readme() + _counts_in_doc()
+    partial = {name for name, p in profiles.items() if p.state.startswith("partial")}
+    assert partial <= {name for name, *_ in stated}, "a partial profile's count is not stated"
+    for name, stored, planned, where in stated:
+        profile = profiles[name]
+        of_planned = re.search(r"of the profile's (\d+) runs", profile.state)
+        assert planned == (int(of_planned[1]) if of_planned else profile.n_runs), where
+        assert stored == profile.n_runs, f"{name} holds {profile.n_runs} runs, not {where!r}"
