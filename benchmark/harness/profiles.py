@@ -49,6 +49,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from planshape.errors import UnknownIdError
+from planshape.harness.missing_runs import name_missing
 from planshape.results.measure import SuccessMeasure, describe, measured
 from planshape.results.outcome import CONTROL_POTENTIALS
 from planshape.shaping.registration import task_spec
@@ -300,10 +301,11 @@ class Profile:
             for r, ok in zip(rows, current, strict=True)
             if ok
         } & planned
+        missing = name_missing(planned - stored, self.name)
         partial = (
             [
                 f"partial: {len(stored)} of the profile's {len(planned)} runs are stored; "
-                "the others have not been trained yet"
+                f"the others have not been trained yet ({missing})"
             ]
             if rows and len(stored) < len(planned) and not self.archived
             else []

@@ -190,7 +190,9 @@ def test_a_profile_with_runs_missing_says_it_is_partial(smoke_out, tmp_path):
     shutil.copytree(smoke_out / "runs", out / "runs")
     next(p for p in (out / "runs").glob("*.jsonl") if '"dense"' in p.read_text()).unlink()
     assert main(["leaderboard", "--out", str(out), "--json"]) == 0
-    assert "partial: 2 of the profile's 3 runs are stored" in (out / "LEADERBOARD.md").read_text()
+    board = (out / "LEADERBOARD.md").read_text()
+    assert "partial: 2 of the profile's 3 runs are stored" in board
+    assert "(missing: planshape/Reach-v1 dense PPO seed 0)" in board
     assert main(["leaderboard", "--out", str(smoke_out), "--json"]) == 0
     assert "partial" not in (smoke_out / "LEADERBOARD.md").read_text()
 
