@@ -26,15 +26,16 @@ def name_missing(missing: Iterable[tuple[str, str, str, int]], profile: str) -> 
     groups: dict[tuple[str, str, str], list[int]] = {}
     for task, entry, algo, seed in missing:
         groups.setdefault((task, entry, algo), []).append(seed)
-    named = sorted(groups.items())[:NAMED_GROUPS]
+    ordered = sorted(groups.items())
     parts = [
         f"{task} {entry} {algo} {'seed' if len(seeds) == 1 else 'seeds'} {_spans(seeds)}"
-        for (task, entry, algo), seeds in named
+        for (task, entry, algo), seeds in ordered[:NAMED_GROUPS]
     ]
-    rest = sum(len(seeds) for _, seeds in sorted(groups.items())[NAMED_GROUPS:])
+    rest = sum(len(seeds) for _, seeds in ordered[NAMED_GROUPS:])
     if rest:
+        runs = "run" if rest == 1 else "runs"
         parts.append(
-            f"and {rest} more runs (`planshape bench --profile {profile} --dry-run` lists them)"
+            f"and {rest} more {runs} (`planshape bench --profile {profile} --dry-run` lists them)"
         )
     return "missing: " + "; ".join(parts)
 
