@@ -301,11 +301,11 @@ class Profile:
             for r, ok in zip(rows, current, strict=True)
             if ok
         } & planned
-        missing = name_missing(planned - stored, self.name)
         partial = (
             [
                 f"partial: {len(stored)} of the profile's {len(planned)} runs are stored; "
-                f"the others have not been trained yet ({missing})"
+                "the others have not been trained yet "
+                f"({name_missing(planned - stored, self.name)})"
             ]
             if rows and len(stored) < len(planned) and not self.archived
             else []
