@@ -9,7 +9,7 @@ finished into the profile's folder, under rules that keep the store honest:
   an older budget is mixed in;
 * a run the store has is replaced only by a re-execution that repeats it: the same rows with
   every stored field equal (floats exactly, NaN as NaN), except the provenance of the execution
-  (:data:`EXECUTION_FIELDS`: wall time, throughput, code version); it may add fields, as a run
+  (:data:`EXECUTION_FIELDS`: wall time, throughput, code version, CPU); it may add fields, as a run
   re-trained after ``success_any_rate`` was recorded does. A re-execution whose numbers differ
   is refused, so stored evidence never changes silently;
 * ``--whole-entries`` adds new runs only of entries whose every seed in the profile is then
@@ -46,7 +46,7 @@ __all__ = ["EXECUTION_FIELDS", "Adoption", "adopt", "plan_adoption", "repeat_pro
 
 #: fields that describe one execution of a run, not its numbers: they may differ between a run
 #: and its re-execution
-EXECUTION_FIELDS = frozenset({"wall_time_s", "steps_per_s", "code_version"})
+EXECUTION_FIELDS = frozenset({"wall_time_s", "steps_per_s", "code_version", "cpu"})
 
 
 def _same(a: Any, b: Any) -> bool:

@@ -21,8 +21,9 @@ runs stored before it, evaluated PPO inside a rollout, before that rollout's upd
 
 A run is a pure function of its :class:`RunSpec` (rule 6): the learner, the environments and the
 evaluation episodes are seeded from it, torch uses one thread, and nothing else is random.
-Floating-point results are identical on the same machine and library versions; across CPUs
-or library versions they may differ in the last digits.
+Floating-point results are identical on the same machine and library versions. Across CPU
+types an SBX run's are not: XLA compiles for the CPU it runs on, and the last-digit differences
+grow into a different run, so each row records the CPU (:mod:`planshape.harness.machine`).
 
 Example:
     >>> from planshape.harness.profiles import RESULTS_ROOT, RunKey
@@ -51,6 +52,7 @@ import gymnasium
 import numpy as np
 
 from planshape.errors import BadInputError
+from planshape.harness.machine import cpu_description
 from planshape.harness.profiles import RESULTS_ROOT, RunKey
 from planshape.results.rows import StoredRow, validate_row
 from planshape.shaping.registration import instance_set, task_spec
@@ -463,6 +465,7 @@ def train(
         "wall_time_s": round(wall, 3),
         "steps_per_s": round(model.num_timesteps / train_seconds, 1),
         "code_version": code_version(),
+        "cpu": cpu_description(),
         "packages": package_versions(),
         "hyperparameters": spec.hyperparameters,
         "gamma": gamma,

@@ -118,6 +118,14 @@ class StoredRow(TypedDict):
             "it was recorded",
         ]
     ]
+    cpu: NotRequired[
+        Annotated[
+            str,
+            "the CPU the run was trained on and its widest x86 vector extension "
+            "(`planshape.harness.machine`; an SBX run's numbers depend on it); absent in rows "
+            "stored before it was recorded",
+        ]
+    ]
 
 
 class Field(typing.NamedTuple):

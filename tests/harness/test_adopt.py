@@ -110,12 +110,19 @@ def test_an_unfinished_scratch_run_is_refused_by_name(tmp_path, capsys):
     assert not (stored / "runs").exists()
 
 
-@pytest.mark.parametrize("field", ["wall_time_s", "steps_per_s", "code_version"])
-def test_only_the_execution_s_own_fields_may_differ(tmp_path, field):
+@pytest.mark.parametrize(
+    ("field", "value"),
+    [
+        ("wall_time_s", 1.0),
+        ("steps_per_s", 1.0),
+        ("code_version", "v9"),
+        ("cpu", "Intel(R) Xeon(R) Platinum 8481C (avx512f)"),
+    ],
+)
+def test_only_the_execution_s_own_fields_may_differ(tmp_path, field, value):
     stored, scratch = tmp_path / "stored", tmp_path / "scratch"
-    _write(stored, _run(0))
-    value = "v9" if field == "code_version" else 1.0
-    _write(scratch, [r | {field: value} for r in _run(0)])
+    _write(stored, [r | {"cpu": "AMD EPYC (avx2)"} for r in _run(0)])
+    _write(scratch, [r | {"cpu": "AMD EPYC (avx2)", field: value} for r in _run(0)])
     assert [p.name for p in adopt(scratch, stored, METAWORLD_PROFILE).replaced] == ["dense0.jsonl"]
     assert (
         json.loads((stored / "runs" / "dense0.jsonl").read_text().splitlines()[0])[field] == value

@@ -10,6 +10,7 @@ import pytest
 
 import planshape  # noqa: F401  (registers the tasks)
 from planshape.errors import UnknownIdError
+from planshape.harness.machine import cpu_description
 from planshape.harness.profiles import RunKey
 from planshape.harness.runner import RunSpec, execute, make_learner
 from planshape.training.hyperparams import hyperparameters
@@ -42,6 +43,7 @@ def test_an_sbx_run_is_reproducible_and_records_its_backend(algo: str) -> None:
     assert first[0]["packages"]["sbx-rl"] != "missing"
     assert first[0]["packages"]["jax"] != "missing"
     assert first[0]["algo"] == algo
+    assert first[0]["cpu"] == cpu_description() != "unknown"  # its numbers depend on the CPU
 
 
 def _memory_mappings() -> int:
