@@ -3,10 +3,11 @@
 A run is a pure function of its spec on one machine (rule 6), but not across CPU types: XLA
 compiles the SBX learners' updates for the instruction set of the CPU it runs on, and the
 last-digit differences this makes grow, over thousands of gradient steps, into a different run
-(measured: README, *Reproducing a run*). PyTorch's learners re-execute number for number
-across the same CPUs. So each row records the CPU's model name and the widest x86 vector
-extension it has, the one that decides which code XLA generates; a run that does not
-re-execute elsewhere can then be traced to the machine that made it.
+(measured: README, *Across CPU types an SBX run does not re-execute*). PyTorch's learners
+re-execute number for number across the CPUs measured. So each row records the CPU's model
+name and the widest x86 vector extension it has, the one that decides which code XLA
+generates; a run that does not re-execute elsewhere can then be traced to the machine that
+made it.
 
 Example:
     >>> cpu_text("AMD EPYC", {"fpu", "sse4_2", "avx", "avx2", "fma"})
