@@ -41,8 +41,9 @@ def cpu_text(model: str, flags: set[str]) -> str:
 
 @cache
 def cpu_description(cpuinfo: Path = Path("/proc/cpuinfo")) -> str:
-    """This machine's CPU as :func:`cpu_text` words it, read from ``cpuinfo`` (Linux); elsewhere
-    the platform's processor and architecture names."""
+    """This machine's CPU as :func:`cpu_text` words it, read from ``cpuinfo`` (Linux); where that
+    names no model (no such file, or an ARM CPU's, which has no ``model name``) the platform's
+    processor or architecture name."""
     model, flags = "", set()
     try:
         for line in cpuinfo.read_text().splitlines():
@@ -53,5 +54,5 @@ def cpu_description(cpuinfo: Path = Path("/proc/cpuinfo")) -> str:
             elif name == "flags" and not flags:
                 flags = set(value.split())
     except OSError:
-        model = platform.processor() or platform.machine()
-    return cpu_text(model, flags)
+        pass
+    return cpu_text(model or platform.processor() or platform.machine(), flags)

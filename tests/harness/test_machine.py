@@ -25,3 +25,9 @@ def test_a_cpu_without_an_x86_extension_is_named_by_its_model() -> None:
 
 def test_an_unreadable_cpuinfo_falls_back_to_the_platform(tmp_path: Path) -> None:
     assert cpu_description.__wrapped__(tmp_path / "missing") != ""
+
+
+def test_a_cpuinfo_without_a_model_name_falls_back_to_the_platform(tmp_path: Path) -> None:
+    cpuinfo = tmp_path / "cpuinfo"
+    cpuinfo.write_text("processor\t: 0\nFeatures\t: fp asimd\nCPU implementer\t: 0x41\n")
+    assert cpu_description.__wrapped__(cpuinfo) == cpu_description.__wrapped__(tmp_path / "no")
