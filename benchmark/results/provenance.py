@@ -30,7 +30,7 @@ from planshape.results.cells import (
 from planshape.results.rows import Row, evaluation_text
 from planshape.results.stats import normalized_score
 
-__all__ = ["describe_runs"]
+__all__ = ["CPU_NOT_RECORDED", "describe_runs"]
 
 
 def _settings(finals: list[dict[str, Any]]) -> dict[str, Any]:
@@ -55,6 +55,23 @@ def _settings(finals: list[dict[str, Any]]) -> dict[str, Any]:
     }
 
 
+#: what :func:`describe_runs` counts a run under when its rows predate the ``cpu`` field
+CPU_NOT_RECORDED = "not recorded"
+
+
+def _cpu_counts(finals: list[dict[str, Any]]) -> dict[str, int]:
+    """How many runs each CPU trained (the rows' ``cpu``), most first, then by name.
+
+    Example:
+        >>> _cpu_counts([{"cpu": "AMD EPYC (avx2)"}, {}, {"cpu": "AMD EPYC (avx2)"}])
+        {'AMD EPYC (avx2)': 2, 'not recorded': 1}
+    """
+    counts: dict[str, int] = defaultdict(int)
+    for f in finals:
+        counts[f.get("cpu") or CPU_NOT_RECORDED] += 1
+    return dict(sorted(counts.items(), key=lambda item: (-item[1], item[0])))
+
+
 def _provenance(
     rows: list[Row], finals: list[dict[str, Any]], groups: Cells, incomplete: list[str]
 ) -> dict[str, Any]:
@@ -73,6 +90,7 @@ def _provenance(
             for t in sorted({f["task"] for f in finals})
         },
         "code_versions": sorted({f["code_version"] for f in finals}),
+        "cpus": _cpu_counts(finals),
         "packages": settings["packages"],
         "gammas": sorted({f["gamma"] for f in finals}),
         "hyperparameters": settings["hyperparameters"],
@@ -164,7 +182,9 @@ def describe_runs(rows: Iterable[Row], profile: str | None = None) -> dict[str, 
 
     Returns a dict with ``n_runs``, ``n_rows``, ``profiles``, ``budgets`` (task -> algo ->
     steps), ``seeds`` (every seed), ``seeds_per_entry`` ([fewest, most] seeds of any
-    task/entry/algo), ``eval_episodes``, ``code_versions``, ``packages`` (name -> versions seen),
+    task/entry/algo), ``eval_episodes``, ``code_versions``, ``cpus`` (the CPU each run trained on
+    -> how many runs; runs whose rows predate the ``cpu`` field count as ``'not recorded'``),
+    ``packages`` (name -> versions seen),
     ``gammas``, ``hyperparameters`` (task -> algo -> distinct settings), ``wall_time_s`` (the
     sum over runs), ``incomplete_runs`` (run ids without a final row) and ``caveats``: plain
     sentences about anything that weakens a comparison (mixed code or package versions, a

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from typing import Any, ClassVar, Literal
 
 from planshape.results.cells import DENSE, SPARSE
+from planshape.results.provenance import CPU_NOT_RECORDED
 
 __all__ = [
     "CI_LABEL",
@@ -405,6 +406,23 @@ def _evaluation_items(info: Mapping[str, Any]) -> list[tuple[str, str]]:
     ]
 
 
+def _cpu_items(info: Mapping[str, Any]) -> list[tuple[str, str]]:
+    """The set-up table's CPU row, where some run recorded its CPU: an SBX run re-executes only
+    on the CPU type that trained it (README, *Across CPU types an SBX run does not
+    re-execute*), so the page says which that was.
+
+    Example:
+        >>> _cpu_items({"cpus": {"AMD EPYC (avx2)": 5, "not recorded": 150}})
+        [('CPU', 'AMD EPYC (avx2): 5 runs; not recorded: 150 runs')]
+        >>> _cpu_items({"cpus": {"not recorded": 150}})
+        []
+    """
+    cpus = info.get("cpus") or {}
+    if set(cpus) <= {CPU_NOT_RECORDED}:
+        return []
+    return [("CPU", "; ".join(f"{cpu}: {n} run{'s' * (n != 1)}" for cpu, n in cpus.items()))]
+
+
 def _setup_items(header: Mapping[str, Any], info: Mapping[str, Any]) -> list[tuple[str, str]]:
     """(label, text) pairs describing how the results were produced."""
     items = [
@@ -423,6 +441,7 @@ def _setup_items(header: Mapping[str, Any], info: Mapping[str, Any]) -> list[tup
     items += [
         ("Discount γ", ", ".join(f"{g:g}" for g in info["gammas"]) or "n/a"),
         ("Code version", ", ".join(info["code_versions"]) or "n/a"),
+        *_cpu_items(info),
         ("Total run time", f"{info['wall_time_s'] / 3600:.2f} h (sum over runs)"),
     ]
     for key in sorted(header):

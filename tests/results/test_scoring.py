@@ -28,6 +28,7 @@ from planshape.results.stats import (
     stratified_bootstrap,
     stratified_bootstrap_ci,
 )
+from planshape.results.tables import setup_table
 from tests.results.synthetic import make_run, synthetic_rows
 
 # ---------------------------------------------------------------------------- IQM and mean
@@ -429,3 +430,22 @@ def test_describe_runs(rows):
     caveats = " ".join(describe_runs(mixed, profile="test")["caveats"])
     assert "several code versions" in caveats and "uncommitted" in caveats
     assert "not only 'test'" in caveats and "unequal numbers of seeds" in caveats
+
+
+def test_the_set_up_table_names_the_cpus_the_runs_trained_on():
+    """An SBX run re-executes only on the CPU type that trained it, so the page names it, with
+    how many runs each CPU trained; runs from before rows recorded it count as not recorded."""
+    epyc, xeon = "AMD EPYC (avx2)", "Intel(R) Xeon(R) Platinum 8481C (avx512f)"
+    old = [r for seed in (0, 1) for r in make_run(entry="sparse", seed=seed)]
+    recorded = [
+        *make_run(entry="dense", seed=0, cpu=epyc),
+        *make_run(entry="dense", seed=1, cpu=epyc),
+        *make_run(entry="dense", seed=2, cpu=xeon),
+    ]
+    info = describe_runs(old + recorded)
+    assert info["cpus"] == {epyc: 2, "not recorded": 2, xeon: 1}
+    shown = {label.text: text.text for label, text in setup_table({}, info).rows}
+    assert shown["CPU"] == f"{epyc}: 2 runs; not recorded: 2 runs; {xeon}: 1 run"
+    unrecorded = describe_runs(old)
+    assert unrecorded["cpus"] == {"not recorded": 2}
+    assert "CPU" not in {label.text for label, _ in setup_table({}, unrecorded).rows}
