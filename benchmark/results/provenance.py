@@ -13,7 +13,7 @@ Example:
 
 from __future__ import annotations
 
-from collections import defaultdict
+from collections import Counter, defaultdict
 from collections.abc import Iterable
 from typing import Any
 
@@ -66,9 +66,7 @@ def _cpu_counts(finals: list[dict[str, Any]]) -> dict[str, int]:
         >>> _cpu_counts([{"cpu": "AMD EPYC (avx2)"}, {}, {"cpu": "AMD EPYC (avx2)"}])
         {'AMD EPYC (avx2)': 2, 'not recorded': 1}
     """
-    counts: dict[str, int] = defaultdict(int)
-    for f in finals:
-        counts[f.get("cpu") or CPU_NOT_RECORDED] += 1
+    counts = Counter(f.get("cpu") or CPU_NOT_RECORDED for f in finals)
     return dict(sorted(counts.items(), key=lambda item: (-item[1], item[0])))
 
 
