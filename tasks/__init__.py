@@ -308,6 +308,39 @@ register_task(
         kwargs={"env_name": "button-press-v3"},
     )
 )
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-handle-press-v3",
+        family="MetaWorld",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.handle:stages"},
+        max_episode_steps=500,
+        description="MetaWorld handle-press-v3: press a lever's handle down from above",
+        kwargs={"env_name": "handle-press-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-plate-slide-v3",
+        family="MetaWorld",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.plate:stages"},
+        max_episode_steps=500,
+        description="MetaWorld plate-slide-v3: slide a plate across the table into a goal",
+        kwargs={"env_name": "plate-slide-v3"},
+    )
+)
+register_task(
+    TaskSpec(
+        id="planshape/MetaWorld-faucet-open-v3",
+        family="MetaWorld",
+        env_entry_point="planshape.tasks.metaworld.env:MetaWorldTask",
+        models={"stages": "planshape.tasks.metaworld.faucet:stages"},
+        max_episode_steps=500,
+        description="MetaWorld faucet-open-v3: swing a faucet's handle round to open it",
+        kwargs={"env_name": "faucet-open-v3"},
+    )
+)
 
 # ---- gymnasium-robotics ----------------------------------------------------------------------
 

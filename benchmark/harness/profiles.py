@@ -982,8 +982,8 @@ METAWORLD_PROGRESS_PROFILE = dataclasses.replace(
 #: above were chosen after the metaworld runs had been seen, on the same tasks, so their
 #: verdicts are not a clean test. Everything here was decided from those profiles alone:
 #:
-#: * the tasks: the registered MetaWorld tasks that no profile had trained with SAC
-#:   (drawer-open, push, pick-place);
+#: * the tasks: MetaWorld tasks that no profile had trained with SAC, in waves, each fixed in
+#:   code before any run of it (:data:`METAWORLD_HOLDOUT_CANDIDATES`);
 #: * one budget for all, 200,000 steps, the metaworld profile's most common, set before any
 #:   curve of these tasks was seen;
 #: * one shaped entry, ``plan-distance-sum/stages``, with φ × 10 and the plan progress observed
@@ -992,16 +992,51 @@ METAWORLD_PROGRESS_PROFILE = dataclasses.replace(
 #: * the rule's qualification: a task decides only if dense's 5 seeds reach a mean success of
 #:   0.8 at any step at the budget. Dense trains first; a task whose dense seed 0 ends below 0.5
 #:   is dropped before its other runs (it cannot qualify without the other four seeds averaging
-#:   0.875 or more), and the drop is stated here with the curve.
+#:   0.875 or more), and the drop is stated here with the curve
+#:   (:data:`METAWORLD_HOLDOUT_SCREENED_OUT`).
+#:
+#: A later wave is chosen after the earlier waves' dense screens only, never after a shaped or
+#: sparse run of the profile, so the shaped entry's comparison with dense stays held out.
+METAWORLD_HOLDOUT_CANDIDATES = tuple(
+    f"planshape/MetaWorld-{name}-v3"
+    for name in (
+        # wave 1 (commit abea209): the registered tasks no profile had trained with SAC
+        "drawer-open",
+        "push",
+        "pick-place",
+        # wave 2, registered for it after wave 1's screens of drawer-open and push: one
+        # press, slide or swing each, like the tasks whose dense reward qualified in the
+        # metaworld profile (handle-press like button-press, plate-slide like drawer-close,
+        # faucet-open like window-open); door-close was left out: MetaWorld's reset leaves its
+        # door inside the safe, and the door swings 6-9 mm a step on its own after it, which
+        # tests/tasks/test_metaworld.py refuses
+        "handle-press",
+        "plate-slide",
+        "faucet-open",
+    )
+)
+#: candidates the screen dropped: dense's seed 0 (any-step success of 10 deterministic
+#: episodes at 0, 20,000, ..., 200,000 steps; ``planshape bench --profile metaworld-holdout
+#: --tasks TASK --seeds 0 -k dense``), not stored (as the probes that chose the other MetaWorld
+#: budgets are not)
+METAWORLD_HOLDOUT_SCREENED_OUT: dict[str, str] = {
+    "planshape/MetaWorld-drawer-open-v3": (
+        "dense seed 0: 0.0 at every point (its handle 0.19 m from the goal throughout)"
+    ),
+    "planshape/MetaWorld-push-v3": (
+        "dense seed 0: 0.0 to 140,000, then 0.2, 0.0, 0.1 (final distance 0.28 m)"
+    ),
+}
 METAWORLD_HOLDOUT_TASKS = tuple(
-    f"planshape/MetaWorld-{name}-v3" for name in ("drawer-open", "push", "pick-place")
+    t for t in METAWORLD_HOLDOUT_CANDIDATES if t not in METAWORLD_HOLDOUT_SCREENED_OUT
 )
 METAWORLD_HOLDOUT_BUDGET = 200_000
 METAWORLD_HOLDOUT_PROFILE = dataclasses.replace(
     METAWORLD_PROGRESS_PROFILE,
     name="metaworld-holdout",
     description=(
-        "a held-out test fixed before its runs: MetaWorld tasks no other profile trained × "
+        "a held-out test fixed before its runs: MetaWorld tasks no other profile trained with "
+        "SAC × "
         "{sparse, dense, plan-distance-sum on the stages model, φ multiplied by "
         f"{SAC_SHAPING_SCALE:g} and the plan progress observed}} × SAC (SBX) × 5 seeds, "
         f"{METAWORLD_HOLDOUT_BUDGET:,} steps each"
@@ -1019,11 +1054,17 @@ METAWORLD_HOLDOUT_PROFILE = dataclasses.replace(
     caveats=(
         "fixed before any of its runs trained (tasks, budget, the one shaped entry and its "
         "settings; planshape.harness.profiles): a held-out test of the configuration the "
-        "metaworld-progress profile was chosen to be, on tasks none of the MetaWorld profiles "
-        "ran",
+        "metaworld-progress profile was chosen to be, on tasks none of the SAC MetaWorld "
+        "profiles ran",
         f"one budget for every task, {METAWORLD_HOLDOUT_BUDGET:,} steps, set before any of "
         "their learning curves was seen; a task decides only where dense's 5 seeds reach a "
         "mean success of 0.8 there",
+        "dropped by the screen (dense's seed 0 below 0.5 at the budget) before their other "
+        "runs: "
+        + "; ".join(
+            f"{task.removeprefix('planshape/')}, {why}"
+            for task, why in METAWORLD_HOLDOUT_SCREENED_OUT.items()
+        ),
         "each evaluation point runs 10 deterministic episodes from starts drawn from fixed "
         "seeds; MetaWorld episodes are 500 steps and never terminate",
         f"the shaped entry's φ is multiplied by {SAC_SHAPING_SCALE:g} and its learner sees its "

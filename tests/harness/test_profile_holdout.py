@@ -6,7 +6,10 @@ test into one chosen after its results were seen."""
 from __future__ import annotations
 
 from planshape.harness.profiles import (
+    METAWORLD_HOLDOUT_CANDIDATES,
     METAWORLD_HOLDOUT_PROFILE,
+    METAWORLD_HOLDOUT_SCREENED_OUT,
+    METAWORLD_HOLDOUT_TASKS,
     METAWORLD_PROFILE,
     METAWORLD_PROGRESS_PROFILE,
     PROFILES,
@@ -14,12 +17,24 @@ from planshape.harness.profiles import (
 )
 
 HOLDOUT = METAWORLD_HOLDOUT_PROFILE
-FIXED_TASKS = {
-    "planshape/MetaWorld-drawer-open-v3",
-    "planshape/MetaWorld-push-v3",
-    "planshape/MetaWorld-pick-place-v3",
-}
+#: the candidates in the order their waves were fixed (wave 1: drawer-open, push, pick-place)
+CANDIDATES = tuple(
+    f"planshape/MetaWorld-{name}-v3"
+    for name in ("drawer-open", "push", "pick-place", "handle-press", "plate-slide", "faucet-open")
+)
 SHAPED = "plan-distance-sum/stages"
+FIXED_TASKS = set(CANDIDATES) - set(METAWORLD_HOLDOUT_SCREENED_OUT)
+
+
+def test_the_candidates_are_unchanged_and_only_the_screen_removes_one():
+    """A candidate leaves only through the dense screen, with its curve stated; a later wave
+    adds to the end, it never replaces a candidate."""
+    assert METAWORLD_HOLDOUT_CANDIDATES == CANDIDATES
+    assert set(METAWORLD_HOLDOUT_SCREENED_OUT) < set(CANDIDATES)
+    for task, why in METAWORLD_HOLDOUT_SCREENED_OUT.items():
+        assert why.startswith("dense seed 0: "), task
+        assert any(task.removeprefix("planshape/") in c for c in HOLDOUT.caveats), task
+    assert tuple(t for t in CANDIDATES if t in FIXED_TASKS) == METAWORLD_HOLDOUT_TASKS
 
 
 def test_the_fixed_design_is_unchanged():
@@ -30,7 +45,7 @@ def test_the_fixed_design_is_unchanged():
     assert {k.algo for k in keys} == {"SBX-SAC"}
     assert {k.budget for k in keys} == {200_000}
     assert {k.seed for k in keys} == set(range(5))
-    assert len(keys) == 3 * 3 * 5
+    assert len(keys) == len(FIXED_TASKS) * 3 * 5
     assert (HOLDOUT.eval_every, HOLDOUT.eval_episodes, HOLDOUT.success_measure) == (
         METAWORLD_PROFILE.eval_every,
         METAWORLD_PROFILE.eval_episodes,

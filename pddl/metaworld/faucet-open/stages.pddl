@@ -1,0 +1,5 @@
+(define (problem faucet-open-stages)
+  (:domain metaworld-faucet-open)
+  (:objects gripper - hand handle - handle faucet - faucet)
+  (:init (handle-of handle faucet))
+  (:goal (open faucet)))

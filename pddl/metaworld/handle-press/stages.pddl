@@ -1,0 +1,5 @@
+(define (problem handle-press-stages)
+  (:domain metaworld-handle-press)
+  (:objects gripper - hand handle - handle)
+  (:init)
+  (:goal (pressed handle)))

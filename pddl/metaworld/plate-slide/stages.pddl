@@ -1,0 +1,5 @@
+(define (problem plate-slide-stages)
+  (:domain metaworld-plate-slide)
+  (:objects gripper - hand plate - plate)
+  (:init)
+  (:goal (at-goal plate)))
