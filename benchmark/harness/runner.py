@@ -179,6 +179,8 @@ def code_version() -> str:
 
     ``-dirty`` marks uncommitted changes to tracked files *outside* ``leaderboard/``: the
     benchmark writes its results there, and its own output does not make the code dirty.
+    Read once per process, as its first run starts (:func:`train`): the code a process runs
+    is what it imported then, whatever the checkout becomes while a long run trains.
     """
     for folder in (Path.cwd(), Path(__file__).resolve().parents[2]):
         try:
@@ -397,6 +399,7 @@ def train(
     key = spec.key
     run_id = spec.run_id
     gamma = spec.hyperparameters["gamma"]
+    version = code_version()  # the code as the run starts, not as a long run ends after an edit
     started = time.perf_counter()
     model = make_learner(key, spec.hyperparameters)
     eval_env = make_evaluation_env(key, spec.hyperparameters)
@@ -464,7 +467,7 @@ def train(
         "invariance": spec.invariance,
         "wall_time_s": round(wall, 3),
         "steps_per_s": round(model.num_timesteps / train_seconds, 1),
-        "code_version": code_version(),
+        "code_version": version,
         "cpu": cpu_description(),
         "packages": package_versions(),
         "hyperparameters": spec.hyperparameters,

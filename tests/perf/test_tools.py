@@ -77,3 +77,23 @@ def test_training_throughput_rows_carry_the_ratio_the_shaping_step_implies(monke
 def test_the_shaping_step_overhead_is_read_off_the_shaping_measurement():
     assert perf_training.step_overhead("planshape/Reach-v1", "sparse") == 0.0
     assert math.isfinite(perf_training.step_overhead("planshape/Reach-v1", "plan-based/grid"))
+
+
+def test_a_run_records_the_code_version_it_started_with(monkeypatch):
+    """A run records the checkout as it starts training: an edit or a commit while it trains
+    (runs take an hour on MetaWorld) does not relabel the code it ran."""
+    from planshape.harness import runner
+    from planshape.harness.profiles import RunKey
+
+    evaluated = []
+    real_evaluate = runner.evaluate
+
+    def evaluate(*args, **kwargs):
+        evaluated.append(True)
+        return real_evaluate(*args, **kwargs)
+
+    monkeypatch.setattr(runner, "evaluate", evaluate)
+    monkeypatch.setattr(runner, "code_version", lambda: "edited" if evaluated else "started")
+    key = RunKey("planshape/Reach-v1", "sparse", "PPO", 0, 1024)
+    rows = runner.execute(runner.RunSpec.create(key, "test", eval_every=1024, eval_episodes=1))
+    assert {r["code_version"] for r in rows} == {"started"}
